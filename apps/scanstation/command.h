@@ -1,0 +1,49 @@
+// The shape every `scanstation` subcommand shares: its own options bound to
+// fields, plus --report and --force; run() does the work through the rooms.
+#pragma once
+
+#include "core/io/file_access.h"
+#include "core/progress.h"
+#include "core/report.h"
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <spdlog/logger.h>
+#include <string>
+#include <vector>
+
+namespace scanstation::app {
+
+/// What a running command is handed: where to report progress and results.
+struct CommandContext {
+  ProgressReporter& progress;
+  Report& report;
+  io::Overwrite overwrite;
+  std::shared_ptr<spdlog::logger> log;
+};
+
+class Command {
+ public:
+  virtual ~Command() = default;
+  /// Registers the subcommand `name` on the top-level app, with --report and --force.
+  Command(CLI::App& parent, const std::string& name, const std::string& description);
+
+  virtual void run(CommandContext& context) = 0;
+
+  CLI::App& cli() { return *cli_; }
+  const std::string& report_path() const { return report_path_; }
+  bool force() const { return force_; }
+
+ protected:
+  CLI::App* cli_;
+
+ private:
+  std::string report_path_;
+  bool force_ = false;
+};
+
+std::unique_ptr<Command> make_convert_command(CLI::App& parent);
+std::unique_ptr<Command> make_info_command(CLI::App& parent);
+std::unique_ptr<Command> make_demo_command(CLI::App& parent);
+
+}  // namespace scanstation::app

@@ -1,0 +1,71 @@
+// scanstation: the command line of the scanning station.
+//
+// Exit codes: 0 success, 1 bad input or usage, 2 runtime failure.
+#include "command.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/version.h"
+
+#include <cstdio>
+#include <exception>
+
+namespace {
+
+using namespace scanstation;
+
+int run(int argc, char** argv) {
+  CLI::App cli{"scanstation: turntable laser and stereo scanning, closed object boundaries from scattered points",
+               "scanstation"};
+  cli.set_version_flag("--version", std::string("scanstation ") + kVersion);
+  cli.require_subcommand(1);
+  int verbose = 0;
+  bool quiet = false;
+  std::string progress = "auto";
+  cli.add_flag("-v,--verbose", verbose, "More log output (repeat for debug detail)");
+  cli.add_flag("-q,--quiet", quiet, "Only errors on stderr");
+  cli.add_option("--progress", progress, "Progress on stderr: auto (a bar on a terminal), bar, json (JSON lines), none")
+      ->check(CLI::IsMember({"auto", "bar", "json", "none"}));
+
+  std::vector<std::unique_ptr<app::Command>> commands;
+  commands.push_back(app::make_convert_command(cli));
+  commands.push_back(app::make_info_command(cli));
+  commands.push_back(app::make_demo_command(cli));
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = cli.exit(e);  // prints help/version or the usage error
+    return code == 0 ? 0 : 1;
+  }
+
+  set_log_level(quiet ? spdlog::level::err
+                      : verbose >= 2 ? spdlog::level::debug
+                      : verbose == 1 ? spdlog::level::info
+                                     : spdlog::level::warn);
+  for (auto& command : commands) {
+    if (!command->cli().parsed()) continue;
+    Report report(command->cli().get_name());
+    ProgressReporter reporter(parse_progress_mode(quiet && progress == "auto" ? "none" : progress));
+    const auto overwrite = command->force() ? io::Overwrite::replace : io::Overwrite::refuse;
+    if (!command->report_path().empty()) io::check_writable(command->report_path(), overwrite);
+    app::CommandContext context{reporter, report, overwrite, room_logger("scanstation")};
+    command->run(context);
+    reporter.finish();
+    if (!command->report_path().empty()) report.write(command->report_path(), overwrite);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const scanstation::InvalidInput& e) {
+    std::fprintf(stderr, "scanstation: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "scanstation: failed: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,80 @@
+#include "core/describe.h"
+
+#include "core/bounding_box.h"
+#include "core/mesh_topology.h"
+#include "core/unique_points.h"
+
+namespace scanstation {
+
+namespace {
+template <typename Box>
+nlohmann::json box_json(const Box& box) {
+  if (box.isEmpty()) return nullptr;
+  return {{"min", std::vector<double>(box.min().data(), box.min().data() + box.min().size())},
+          {"max", std::vector<double>(box.max().data(), box.max().data() + box.max().size())},
+          {"diagonal", box.diagonal().norm()}};
+}
+
+nlohmann::json topology_json(const MeshTopology& t) {
+  nlohmann::json j = {{"closed", t.closed},
+                      {"manifold", t.manifold},
+                      {"oriented", t.oriented},
+                      {"orientable", t.orientable},
+                      {"genus", t.genus ? nlohmann::json(*t.genus) : nlohmann::json(nullptr)},
+                      {"components", t.components},
+                      {"edges", t.edges},
+                      {"euler_characteristic", t.euler_characteristic},
+                      {"boundary_edges", t.boundary_edges},
+                      {"boundary_loops", t.boundary_loops},
+                      {"non_manifold_edges", t.non_manifold_edges},
+                      {"non_manifold_vertices", t.non_manifold_vertices},
+                      {"degenerate_faces", t.degenerate_faces},
+                      {"duplicate_faces", t.duplicate_faces},
+                      {"isolated_vertices", t.isolated_vertices}};
+  return j;
+}
+}  // namespace
+
+nlohmann::json describe(const TriangleMesh& mesh) {
+  const auto& P = mesh.vertices.positions;
+  std::vector<Eigen::Index> first, map;
+  const Eigen::Index duplicates = unique_points(P, first, map);
+  nlohmann::json j = {{"vertices", mesh.vertex_count()},
+                      {"faces", mesh.face_count()},
+                      {"dimension", mesh.vertices.dimension},
+                      {"normals", mesh.vertices.has_normals()},
+                      {"colors", mesh.vertices.has_colors()},
+                      {"duplicate_points", duplicates}};
+  if (mesh.vertices.dimension == 2) {
+    j["bounding_box"] = box_json(bounding_box(Eigen::MatrixX2d(P.leftCols(2))));
+  } else {
+    j["bounding_box"] = box_json(bounding_box(P));
+  }
+  if (mesh.face_count() == 0) return j;
+
+  const MeshTopology t = mesh_topology(mesh);
+  j["topology"] = topology_json(t);
+  double area = 0.0, six_volume = 0.0;
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    const Eigen::Vector3d a = P.row(mesh.faces(f, 0)), b = P.row(mesh.faces(f, 1)), c = P.row(mesh.faces(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+    six_volume += a.dot(b.cross(c));
+  }
+  j["area"] = area;
+  // The divergence theorem gives the enclosed volume only for a closed,
+  // consistently oriented surface; its sign says whether normals face out.
+  if (t.closed && t.oriented) j["volume"] = six_volume / 6.0;
+  return j;
+}
+
+nlohmann::json describe(const Polygon2& polygon) {
+  const double twice_area = twice_signed_area(polygon);
+  return {{"vertices", polygon.size()},
+          {"perimeter", perimeter(polygon)},
+          {"area", std::abs(twice_area) / 2.0},
+          {"orientation", twice_area > 0 ? "counter-clockwise" : twice_area < 0 ? "clockwise" : "degenerate"},
+          {"simple", is_simple(polygon)},
+          {"bounding_box", box_json(bounding_box(polygon.vertices))}};
+}
+
+}  // namespace scanstation

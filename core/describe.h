@@ -1,0 +1,22 @@
+// Summaries of data sets for `scanstation info` and for reports: counts,
+// bounding box, duplicates, and mesh topology.
+#pragma once
+
+#include "core/polygon.h"
+#include "core/triangle_mesh.h"
+
+#include <nlohmann/json.hpp>
+
+namespace scanstation {
+
+/// {"vertices", "faces", "dimension", "normals", "colors", "bounding_box":
+///  {"min", "max", "diagonal"}, "duplicate_points"} and, when there are
+/// faces, "topology": {closed, manifold, oriented, genus, components, ...}
+/// plus "area" and, for a closed oriented mesh, "volume".
+nlohmann::json describe(const TriangleMesh& mesh);
+
+/// {"vertices", "perimeter", "area", "orientation": "counter-clockwise" |
+///  "clockwise" | "degenerate", "simple", "bounding_box"}.
+nlohmann::json describe(const Polygon2& polygon);
+
+}  // namespace scanstation

@@ -1,0 +1,121 @@
+#include "core/io/file_access.h"
+
+#include "core/errors.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace scanstation::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string os_error(const std::string& what, const fs::path& path, int error) {
+  return what + " " + path.string() + ": " + std::strerror(error);
+}
+
+void write_all(int fd, std::string_view content, const fs::path& temp) {
+  while (!content.empty()) {
+    const ssize_t n = ::write(fd, content.data(), content.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(os_error("cannot write", temp, errno));
+    }
+    content.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+// Moves temp onto target; when refusing, fails instead of replacing a target
+// that appeared meanwhile (RENAME_NOREPLACE, or link+unlink where the file
+// system lacks it).
+void move_into_place(const fs::path& temp, const fs::path& target, Overwrite overwrite) {
+  if (overwrite == Overwrite::replace) {
+    if (std::rename(temp.c_str(), target.c_str()) != 0) throw IoError(os_error("cannot rename onto", target, errno));
+    return;
+  }
+  if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return;
+  int error = errno;
+  if (error == EINVAL || error == ENOSYS) {
+    if (::link(temp.c_str(), target.c_str()) == 0) {
+      ::unlink(temp.c_str());
+      return;
+    }
+    error = errno;
+  }
+  if (error == EEXIST)
+    throw InvalidInput(target.string() + ": output exists; not replacing it (use --force to replace)");
+  throw IoError(os_error("cannot create", target, error));
+}
+}  // namespace
+
+std::string read_file(const fs::path& path) {
+  std::error_code ec;
+  const auto status = fs::status(path, ec);
+  if (!fs::exists(status)) throw InvalidInput(path.string() + ": no such file");
+  if (fs::is_directory(status)) throw InvalidInput(path.string() + ": is a folder, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(os_error("cannot open", path, errno));
+  std::string content;
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size > 0) {
+    content.resize(static_cast<std::size_t>(size));
+    in.seekg(0);
+    in.read(content.data(), size);
+  } else {  // not seekable (a pipe): read in chunks
+    in.clear();
+    content.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  if (in.bad()) throw IoError(os_error("cannot read", path, errno));
+  return content;
+}
+
+void check_writable(const fs::path& path, Overwrite overwrite) {
+  std::error_code ec;
+  if (overwrite == Overwrite::refuse && fs::exists(path, ec))
+    throw InvalidInput(path.string() + ": output exists; not replacing it (use --force to replace)");
+  if (fs::is_directory(path, ec)) throw InvalidInput(path.string() + ": is a folder, expected a file name");
+}
+
+namespace {
+// Creates a fresh temporary file beside `path`; the mode 0666 is reduced by
+// the umask as for any new file.
+int create_temporary(const fs::path& path, fs::path& temp) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    temp = folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                     std::to_string(counter++));
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) return fd;
+    if (errno != EEXIST) throw IoError(os_error("cannot create a temporary file in", folder, errno));
+  }
+  throw IoError("cannot create a temporary file in " + folder.string());
+}
+}  // namespace
+
+void write_file_atomically(const fs::path& path, std::string_view content, Overwrite overwrite) {
+  check_writable(path, overwrite);
+  fs::path temp;
+  int fd = create_temporary(path, temp);
+  try {
+    write_all(fd, content, temp);
+    if (::fsync(fd) != 0) throw IoError(os_error("cannot flush", temp, errno));
+    const int closed = ::close(fd);
+    fd = -1;
+    if (closed != 0) throw IoError(os_error("cannot close", temp, errno));
+    move_into_place(temp, path, overwrite);
+  } catch (...) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(temp.c_str());
+    throw;
+  }
+}
+
+}  // namespace scanstation::io

@@ -1,0 +1,28 @@
+// Whole-file reads and atomic whole-file writes.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace scanstation::io {
+
+/// What to do when an output file already exists.
+enum class Overwrite { refuse, replace };
+
+/// The whole content of a file. Throws InvalidInput when it does not exist or
+/// is a directory, IoError when it cannot be read.
+std::string read_file(const std::filesystem::path& path);
+
+/// Writes `content` to `path` atomically: into a temporary file in the same
+/// folder, flushed to disk, then renamed over the target, so a crash never
+/// leaves a half-written result. With Overwrite::refuse an existing target is
+/// never replaced (checked atomically at the rename) and InvalidInput is
+/// thrown; IoError when the folder is not writable.
+void write_file_atomically(const std::filesystem::path& path, std::string_view content, Overwrite overwrite);
+
+/// Throws InvalidInput when `path` exists and overwrite is refused: lets a
+/// command fail before doing long work whose result it could not keep.
+void check_writable(const std::filesystem::path& path, Overwrite overwrite);
+
+}  // namespace scanstation::io

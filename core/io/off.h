@@ -1,0 +1,23 @@
+// Object File Format: OFF, COFF, NOFF, CNOFF (ascii).
+#pragma once
+
+#include "core/progress.h"
+#include "core/triangle_mesh.h"
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace scanstation::io {
+
+/// Reads the header keyword ([C][N]OFF, counts on the same or the next line),
+/// the vertices (with normals for N, colours for C as 0..255 integers or 0..1
+/// floats) and the faces "n i0 ... in-1 [colour]" (polygons fan-triangulated).
+/// '#' starts a comment. Throws FormatError naming the line.
+TriangleMesh read_off(std::string_view text, const std::filesystem::path& file, const ProgressCallback& progress = {});
+
+/// Writes OFF (NOFF/COFF/CNOFF when normals/colours are present) with
+/// shortest round-trip decimals.
+std::string write_off(const TriangleMesh& mesh);
+
+}  // namespace scanstation::io

@@ -1,0 +1,23 @@
+// Closed polygons as SVG.
+#pragma once
+
+#include "core/polygon.h"
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace scanstation::io {
+
+/// Reads the first <polygon points="..."> (or <polyline>, or <path d="...">
+/// with M/L/H/V/Z commands, absolute or relative) of an SVG file. Points are
+/// read as written, so a file written by write_svg reads back exactly.
+/// Throws FormatError naming the line.
+Polygon2 read_svg(std::string_view text, const std::filesystem::path& file);
+
+/// Draws the polygon (outline and vertex dots) with the y axis pointing up;
+/// the coordinates inside are the exact input values (shortest round-trip),
+/// the flip is a transform.
+std::string write_svg(const Polygon2& polygon);
+
+}  // namespace scanstation::io

@@ -1,0 +1,39 @@
+#include "core/polygon.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+
+#include <vector>
+
+namespace scanstation {
+
+double twice_signed_area(const Polygon2& polygon) {
+  const Eigen::Index n = polygon.size();
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto p = polygon.vertices.row(i);
+    const auto q = polygon.vertices.row((i + 1) % n);
+    sum += p.x() * q.y() - q.x() * p.y();
+  }
+  return sum;
+}
+
+double perimeter(const Polygon2& polygon) {
+  const Eigen::Index n = polygon.size();
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    sum += (polygon.vertices.row((i + 1) % n) - polygon.vertices.row(i)).norm();
+  return sum;
+}
+
+bool is_simple(const Polygon2& polygon) {
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  if (polygon.size() < 3) return false;
+  std::vector<Kernel::Point_2> points;
+  points.reserve(static_cast<std::size_t>(polygon.size()));
+  for (Eigen::Index i = 0; i < polygon.size(); ++i)
+    points.emplace_back(polygon.vertices(i, 0), polygon.vertices(i, 1));
+  return CGAL::is_simple_2(points.begin(), points.end(), Kernel());
+}
+
+}  // namespace scanstation

@@ -1,0 +1,32 @@
+#include "core/predicates.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+namespace scanstation {
+
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+Kernel::Point_2 cgal(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
+Kernel::Point_3 cgal(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+}  // namespace
+
+int orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return static_cast<int>(CGAL::orientation(cgal(a), cgal(b), cgal(c)));
+}
+
+int orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                const Eigen::Vector3d& d) {
+  return static_cast<int>(CGAL::orientation(cgal(a), cgal(b), cgal(c), cgal(d)));
+}
+
+int side_of_oriented_circle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                            const Eigen::Vector2d& d) {
+  return static_cast<int>(CGAL::side_of_oriented_circle(cgal(a), cgal(b), cgal(c), cgal(d)));
+}
+
+int side_of_oriented_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                            const Eigen::Vector3d& d, const Eigen::Vector3d& e) {
+  return static_cast<int>(CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
+}
+
+}  // namespace scanstation

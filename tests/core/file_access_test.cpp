@@ -1,0 +1,86 @@
+#include "core/errors.h"
+#include "core/io/file_access.h"
+#include "test_support.h"
+
+#include <atomic>
+#include <fstream>
+#include <thread>
+
+namespace scanstation::io {
+namespace {
+
+using test::expect_error;
+using test::ScratchFolder;
+
+std::size_t entries(const std::filesystem::path& folder) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(folder), {}));
+}
+
+TEST(AtomicWrite, WritesNewFileAndLeavesNoTemporary) {
+  ScratchFolder dir;
+  write_file_atomically(dir / "a.txt", "hello", Overwrite::refuse);
+  EXPECT_EQ(read_file(dir / "a.txt"), "hello");
+  EXPECT_EQ(entries(dir.path()), 1u);
+}
+
+TEST(AtomicWrite, RefusesToReplaceUnlessAsked) {
+  ScratchFolder dir;
+  write_file_atomically(dir / "a.txt", "first", Overwrite::refuse);
+  expect_error<InvalidInput>([&] { write_file_atomically(dir / "a.txt", "second", Overwrite::refuse); },
+                             {"a.txt", "exists", "--force"});
+  EXPECT_EQ(read_file(dir / "a.txt"), "first");
+  write_file_atomically(dir / "a.txt", "second", Overwrite::replace);
+  EXPECT_EQ(read_file(dir / "a.txt"), "second");
+  EXPECT_EQ(entries(dir.path()), 1u);
+}
+
+// Many writers race for one name without --force: exactly one wins, the
+// file holds exactly its content (never a mix), and no temporary is left.
+TEST(AtomicWrite, ConcurrentRefusingWritersNeverClobber) {
+  ScratchFolder dir;
+  const std::string big_a(1 << 20, 'a'), big_b(1 << 20, 'b');
+  std::atomic<int> wins{0};
+  std::vector<std::thread> writers;
+  for (int t = 0; t < 8; ++t)
+    writers.emplace_back([&, t] {
+      try {
+        write_file_atomically(dir / "race.bin", t % 2 ? big_a : big_b, Overwrite::refuse);
+        ++wins;
+      } catch (const InvalidInput&) {
+      }
+    });
+  for (auto& w : writers) w.join();
+  EXPECT_EQ(wins.load(), 1);
+  const std::string content = read_file(dir / "race.bin");
+  EXPECT_TRUE(content == big_a || content == big_b);
+  EXPECT_EQ(entries(dir.path()), 1u);
+}
+
+TEST(AtomicWrite, MissingFolderIsAnIoErrorAndLeavesNothing) {
+  ScratchFolder dir;
+  EXPECT_THROW(write_file_atomically(dir / "no/such/folder/x.txt", "x", Overwrite::refuse), IoError);
+  EXPECT_EQ(entries(dir.path()), 0u);
+}
+
+TEST(AtomicWrite, ReplacingKeepsOldContentVisibleUntilTheRename) {
+  // A reader that opened the old file keeps reading the old bytes: the new
+  // file is a different inode renamed into place, not an in-place rewrite.
+  ScratchFolder dir;
+  write_file_atomically(dir / "a.txt", "old content", Overwrite::refuse);
+  std::ifstream reader(dir / "a.txt");
+  write_file_atomically(dir / "a.txt", "new", Overwrite::replace);
+  std::string seen;
+  std::getline(reader, seen);
+  EXPECT_EQ(seen, "old content");
+  EXPECT_EQ(read_file(dir / "a.txt"), "new");
+}
+
+TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
+  ScratchFolder dir;
+  expect_error<InvalidInput>([&] { read_file(dir / "none.ply"); }, {"none.ply", "no such file"});
+  expect_error<InvalidInput>([&] { read_file(dir.path()); }, {"folder"});
+  expect_error<InvalidInput>([&] { check_writable(dir.path(), Overwrite::replace); }, {"folder"});
+}
+
+}  // namespace
+}  // namespace scanstation::io

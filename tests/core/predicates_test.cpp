@@ -1,0 +1,70 @@
+#include "core/predicates.h"
+
+#include <CGAL/Exact_rational.h>
+#include <gtest/gtest.h>
+
+namespace scanstation {
+namespace {
+
+using Q = CGAL::Exact_rational;
+
+int exact_orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Q det = (Q(b.x()) - Q(a.x())) * (Q(c.y()) - Q(a.y())) - (Q(b.y()) - Q(a.y())) * (Q(c.x()) - Q(a.x()));
+  return CGAL::sign(det);
+}
+
+int naive_orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double det = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+  return (det > 0) - (det < 0);
+}
+
+// Points a few ulps around (0.5, 0.5) against a line through (12, 12) and
+// (24, 24): floating point gets many of these wrong, the predicate must not.
+TEST(Predicates, OrientationIsExactNearDegenerateLines) {
+  const double ulp = std::ldexp(1.0, -53);
+  const Eigen::Vector2d q(12, 12), r(24, 24);
+  int naive_wrong = 0;
+  for (int i = 0; i < 64; ++i)
+    for (int j = 0; j < 64; ++j) {
+      const Eigen::Vector2d p(0.5 + i * ulp, 0.5 + j * ulp);
+      const int exact = exact_orientation(p, q, r);
+      EXPECT_EQ(orientation(p, q, r), exact) << i << "," << j;
+      naive_wrong += naive_orientation(p, q, r) != exact;
+    }
+  EXPECT_GT(naive_wrong, 0) << "the grid should be hard enough to fool plain doubles";
+}
+
+TEST(Predicates, OrientationSignsAndDegenerateCases) {
+  const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_EQ(orientation(a, b, c, Eigen::Vector3d(0, 0, 1)), -orientation(a, b, c, Eigen::Vector3d(0, 0, -1)));
+  EXPECT_NE(orientation(a, b, c, Eigen::Vector3d(0, 0, 1)), 0);
+  EXPECT_EQ(orientation(a, b, c, Eigen::Vector3d(0.3, 0.7, 0)), 0);
+  EXPECT_EQ(orientation(a, b, c, Eigen::Vector3d(1e-300, 1e-300, 0)), 0);
+  EXPECT_NE(orientation(a, b, c, Eigen::Vector3d(0.5, 0.5, 1e-300)), 0);
+  EXPECT_EQ(orientation(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), Eigen::Vector2d(3, 3)), 0);
+  EXPECT_EQ(orientation(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)), 1);
+}
+
+TEST(Predicates, CocircularAndCosphericalPointsAreOnTheBoundary) {
+  // Four points of the unit circle with exactly representable coordinates.
+  const Eigen::Vector2d a(1, 0), b(0, 1), c(-1, 0), d(0, -1);
+  EXPECT_EQ(side_of_oriented_circle(a, b, c, d), 0);
+  EXPECT_EQ(side_of_oriented_circle(a, b, c, Eigen::Vector2d(0, 0)), 1);
+  EXPECT_EQ(side_of_oriented_circle(a, b, c, Eigen::Vector2d(0, -1 - 1e-15)), -1);
+  // The 3-4-5 triple puts (3, 4, 0) exactly on the sphere of radius 5.
+  const Eigen::Vector3d p(5, 0, 0), q(0, 5, 0), r(0, 0, 5), s(-5, 0, 0);
+  const int positive = orientation(p, q, r, s);
+  ASSERT_NE(positive, 0);
+  const auto insphere = [&](const Eigen::Vector3d& e) {
+    return positive > 0 ? side_of_oriented_sphere(p, q, r, s, e) : side_of_oriented_sphere(p, r, q, s, e);
+  };
+  EXPECT_EQ(insphere(Eigen::Vector3d(3, 4, 0)), 0);
+  EXPECT_EQ(insphere(Eigen::Vector3d(0, -3, 4)), 0);
+  EXPECT_EQ(insphere(Eigen::Vector3d(0, 0, -5)), 0);
+  EXPECT_EQ(insphere(Eigen::Vector3d(0.1, 0.2, 0.3)), 1);
+  EXPECT_EQ(insphere(Eigen::Vector3d(3, 4, 1e-300)), -1);
+  EXPECT_EQ(insphere(Eigen::Vector3d(3, 4 - 1e-15, 0)), 1);
+}
+
+}  // namespace
+}  // namespace scanstation

@@ -1,0 +1,77 @@
+#include "core/errors.h"
+#include "core/io/svg.h"
+#include "core/polygon.h"
+#include "test_support.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace scanstation::io {
+namespace {
+
+using test::expect_error;
+
+Polygon2 star(int tips, double scale, Eigen::Vector2d offset) {
+  Polygon2 p;
+  p.vertices.resize(2 * tips, 2);
+  for (int i = 0; i < 2 * tips; ++i) {
+    const double a = std::numbers::pi * i / tips, r = (i % 2 ? 0.4 : 1.0) * scale;
+    p.vertices.row(i) = offset.transpose() + Eigen::RowVector2d(r * std::cos(a), r * std::sin(a));
+  }
+  return p;
+}
+
+TEST(Svg, PolygonRoundTripIsBitExactAtAnyScale) {
+  for (const double scale : {1e-8, 1.0, 1e8})
+    for (const Eigen::Vector2d& offset : {Eigen::Vector2d(0, 0), Eigen::Vector2d(1e6, -3e5)}) {
+      const Polygon2 p = star(7, scale, offset * scale);
+      const Polygon2 back = read_svg(write_svg(p), "s.svg");
+      ASSERT_EQ(back.size(), p.size());
+      EXPECT_TRUE((back.vertices.array() == p.vertices.array()).all()) << scale;
+    }
+}
+
+TEST(Svg, PolygonMeasures) {
+  Polygon2 square;
+  square.vertices.resize(4, 2);
+  square.vertices << 0, 0, 2, 0, 2, 2, 0, 2;
+  EXPECT_DOUBLE_EQ(twice_signed_area(square), 8.0);
+  EXPECT_DOUBLE_EQ(perimeter(square), 8.0);
+  EXPECT_TRUE(is_simple(square));
+  square.vertices.row(1).swap(square.vertices.row(2));  // a bow tie
+  EXPECT_FALSE(is_simple(square));
+  EXPECT_TRUE(is_simple(star(5, 1.0, {0, 0})));
+}
+
+TEST(Svg, ReadsPathsAbsoluteAndRelative) {
+  const std::string svg =
+      "<svg xmlns='http://www.w3.org/2000/svg'>\n<path d='M 1,1 l 2 0 v 2 H 1 z'/>\n</svg>\n";
+  const Polygon2 p = read_svg(svg, "p.svg");
+  ASSERT_EQ(p.size(), 4);
+  Eigen::MatrixX2d expected(4, 2);
+  expected << 1, 1, 3, 1, 3, 3, 1, 3;
+  EXPECT_EQ(p.vertices, expected);
+  const Polygon2 q = read_svg("<svg><polyline points='0,0 1,0 1,1 0,0'/></svg>", "q.svg");
+  EXPECT_EQ(q.size(), 3);  // the repeated closing vertex is dropped
+  const Polygon2 r = read_svg("<svg><path d='M0-1L2-1.5e0,3 4Z'/></svg>", "r.svg");
+  ASSERT_EQ(r.size(), 3);
+  EXPECT_EQ(r.vertices(1, 1), -1.5);
+}
+
+TEST(Svg, MalformedInputNamesFileLineAndExpectation) {
+  expect_error<FormatError>([] { read_svg("", "e.svg"); }, {"e.svg", "empty"});
+  expect_error<FormatError>([] { read_svg("OFF\n3 1 0\n", "m.svg"); }, {"m.svg", "SVG"});
+  expect_error<FormatError>([] { read_svg("<svg>\n<circle r='1'/>\n</svg>", "n.svg"); }, {"n.svg", "<polygon>"});
+  expect_error<FormatError>([] { read_svg("<svg>\n\n<polygon points='0,0 1,0 1'/></svg>", "o.svg"); },
+                            {"o.svg:3", "y of point 2"});
+  expect_error<FormatError>([] { read_svg("<svg>\n<polygon points='0,0 1,0 1,nan'/></svg>", "o.svg"); },
+                            {"o.svg:2", "finite"});
+  expect_error<FormatError>([] { read_svg("<svg>\n<path d='M0 0 C 1 1 2 2 3 3 Z'/></svg>", "c.svg"); },
+                            {"c.svg:2", "'C'"});
+  expect_error<FormatError>([] { read_svg("<svg><polygon points='0,0 1,1'/></svg>", "t.svg"); },
+                            {"t.svg:1", "at least 3"});
+  expect_error<FormatError>([] { read_svg("<svg><polygon fill='red'/></svg>", "a.svg"); }, {"a.svg:1", "'points'"});
+}
+
+}  // namespace
+}  // namespace scanstation::io
