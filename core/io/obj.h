@@ -14,7 +14,9 @@ namespace scanstation::io {
 /// "v", "v/vt", "v//vn" or "v/vt/vn", indices 1-based or negative (relative to
 /// the vertices read so far); polygons are fan-triangulated; a trailing '\'
 /// continues a line; vn, vt, g, o, s, l, usemtl, mtllib and other records
-/// are skipped. Throws FormatError naming the line.
+/// are skipped. Vertex colours (0..1) are kept only when every vertex has one.
+/// Text with a NUL byte (a binary file) is refused. Throws FormatError naming
+/// the line (the first line of a continued record).
 TriangleMesh read_obj(std::string_view text, const std::filesystem::path& file, const ProgressCallback& progress = {});
 
 /// Writes "v" and "f" records with shortest round-trip decimals (vertex

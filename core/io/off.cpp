@@ -60,9 +60,9 @@ struct Fields {
 bool parse_keyword(std::string_view word, OffHeader& header) {
   if (word.size() < 3 || word.substr(word.size() - 3) != "OFF") return false;
   for (const char c : word.substr(0, word.size() - 3)) {
-    bool& flag = c == 'C' ? header.colors : header.normals;
-    if ((c != 'C' && c != 'N') || flag) return false;
-    flag = true;
+    bool* flag = c == 'C' ? &header.colors : c == 'N' ? &header.normals : nullptr;
+    if (!flag || *flag) return false;  // an unknown or a repeated letter
+    *flag = true;
   }
   return true;
 }

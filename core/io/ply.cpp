@@ -52,11 +52,21 @@ const ScalarInfo& info(Scalar type) { return kScalars[static_cast<std::size_t>(t
 
 // The PLY 1.0 names and the sized names that later writers use.
 constexpr std::array<std::pair<std::string_view, Scalar>, 16> kScalarNames{{
-    {"char", Scalar::int8},     {"int8", Scalar::int8},       {"uchar", Scalar::uint8},
-    {"uint8", Scalar::uint8},   {"short", Scalar::int16},     {"int16", Scalar::int16},
-    {"ushort", Scalar::uint16}, {"uint16", Scalar::uint16},   {"int", Scalar::int32},
-    {"int32", Scalar::int32},   {"uint", Scalar::uint32},     {"uint32", Scalar::uint32},
-    {"float", Scalar::float32}, {"float32", Scalar::float32}, {"double", Scalar::float64},
+    {"char", Scalar::int8},
+    {"int8", Scalar::int8},
+    {"uchar", Scalar::uint8},
+    {"uint8", Scalar::uint8},
+    {"short", Scalar::int16},
+    {"int16", Scalar::int16},
+    {"ushort", Scalar::uint16},
+    {"uint16", Scalar::uint16},
+    {"int", Scalar::int32},
+    {"int32", Scalar::int32},
+    {"uint", Scalar::uint32},
+    {"uint32", Scalar::uint32},
+    {"float", Scalar::float32},
+    {"float32", Scalar::float32},
+    {"double", Scalar::float64},
     {"float64", Scalar::float64},
 }};
 
@@ -70,7 +80,7 @@ constexpr std::array<std::string_view, 9> kVertexSlots{"x", "y", "z", "nx", "ny"
 
 struct Property {
   std::string name;
-  Scalar type = Scalar::float32;       // the item type of a list
+  Scalar type = Scalar::float32;      // the item type of a list
   std::optional<Scalar> length_type;  // set for a list property
   std::size_t line = 0;               // header line, for errors
   int slot = kSkip;
@@ -96,9 +106,8 @@ struct Header {
 // bytes of a mislabeled binary file must not reach a one-line message.
 std::string first_line_of(std::string_view text) {
   const std::string_view head = text.substr(0, 64);
-  const bool printable = std::all_of(head.begin(), head.end(), [](char c) {
-    return (c >= 0x20 && c < 0x7f) || c == '\t' || c == '\r' || c == '\n';
-  });
+  const bool printable = std::all_of(
+      head.begin(), head.end(), [](char c) { return (c >= 0x20 && c < 0x7f) || c == '\t' || c == '\r' || c == '\n'; });
   if (!printable) return "binary data";
   const std::string_view line = head.substr(0, head.find_first_of("\r\n"));
   return line.empty() ? "an empty line" : io::quoted(line);
@@ -107,16 +116,18 @@ std::string first_line_of(std::string_view text) {
 void check_magic(TextLines& lines, std::string_view bytes, const fs::path& file) {
   if (bytes.empty()) throw FormatError(FileLocation::whole(file), "file is empty: expected a PLY header");
   if (lines.next() && lines.line_number() == 1 && lines.line() == "ply") return;
-  throw FormatError(FileLocation::at_line(file, 1),
-                    "expected 'ply' magic on the first line (is this really a PLY file?), found " +
-                        first_line_of(bytes));
+  throw FormatError(
+      FileLocation::at_line(file, 1),
+      "expected 'ply' magic on the first line (is this really a PLY file?), found " + first_line_of(bytes));
 }
 
 Encoding parse_format(LineTokens& tokens) {
   const std::string_view name = tokens.next();
   Encoding encoding = Encoding::ascii;
-  if (name == "binary_little_endian") encoding = Encoding::binary_little_endian;
-  else if (name == "binary_big_endian") encoding = Encoding::binary_big_endian;
+  if (name == "binary_little_endian")
+    encoding = Encoding::binary_little_endian;
+  else if (name == "binary_big_endian")
+    encoding = Encoding::binary_big_endian;
   else if (name != "ascii")
     tokens.fail("expected 'ascii', 'binary_little_endian' or 'binary_big_endian' after 'format', found " +
                 io::quoted(name));
@@ -148,9 +159,10 @@ Element parse_element(LineTokens& tokens, std::size_t line, const std::vector<El
 Scalar parse_scalar(LineTokens& tokens, std::string_view name) {
   for (const auto& [known, type] : kScalarNames)
     if (name == known) return type;
-  tokens.fail("expected a property type (char, uchar, short, ushort, int, uint, float, double or int8, uint8, "
-              "int16, uint16, int32, uint32, float32, float64), found " +
-              io::quoted(name));
+  tokens.fail(
+      "expected a property type (char, uchar, short, ushort, int, uint, float, double or int8, uint8, "
+      "int16, uint16, int32, uint32, float32, float64), found " +
+      io::quoted(name));
 }
 
 Property parse_property(LineTokens& tokens, std::size_t line, const Element& element) {
@@ -213,9 +225,8 @@ Header read_header(std::string_view bytes, const fs::path& file) {
 // ---- Binding the properties this reader uses ---------------------------------
 
 int count_slots(const Element& element, int first) {
-  return static_cast<int>(std::count_if(element.properties.begin(), element.properties.end(), [&](const Property& p) {
-    return p.slot >= first && p.slot < first + 3;
-  }));
+  return static_cast<int>(std::count_if(element.properties.begin(), element.properties.end(),
+                                        [&](const Property& p) { return p.slot >= first && p.slot < first + 3; }));
 }
 
 // Whether the vertex element has a whole group (x y z, nx ny nz or red green
@@ -252,9 +263,9 @@ void bind_vertex(Element& element, const fs::path& file) {
   has_group(element, kColorSlot, false, file);
   // Face indices are 32-bit.
   if (element.count > static_cast<std::size_t>(INT_MAX))
-    throw FormatError(FileLocation::at_line(file, element.line),
-                      "expected at most " + std::to_string(INT_MAX) + " vertices, found " +
-                          std::to_string(element.count));
+    throw FormatError(
+        FileLocation::at_line(file, element.line),
+        "expected at most " + std::to_string(INT_MAX) + " vertices, found " + std::to_string(element.count));
 }
 
 void bind_face(Element& element, const fs::path& file) {
@@ -262,8 +273,10 @@ void bind_face(Element& element, const fs::path& file) {
   for (Property& p : element.properties) {
     if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
     const FileLocation where = FileLocation::at_line(file, p.line);
-    if (corners) throw FormatError(where, "expected one list of vertex indices, found both 'vertex_indices' and 'vertex_index'");
-    if (!p.length_type) throw FormatError(where, "expected " + io::quoted(p.name) + " to be a list property, found a scalar");
+    if (corners)
+      throw FormatError(where, "expected one list of vertex indices, found both 'vertex_indices' and 'vertex_index'");
+    if (!p.length_type)
+      throw FormatError(where, "expected " + io::quoted(p.name) + " to be a list property, found a scalar");
     p.slot = kCorners;
     corners = &p;
   }
@@ -275,8 +288,8 @@ void bind_face(Element& element, const fs::path& file) {
 // Marks the used properties and returns the declared vertex count, which face
 // indices are checked against even when the faces come first.
 std::size_t bind_elements(Header& header, const fs::path& file) {
-  const auto vertex = std::find_if(header.elements.begin(), header.elements.end(),
-                                   [](const Element& e) { return e.name == "vertex"; });
+  const auto vertex =
+      std::find_if(header.elements.begin(), header.elements.end(), [](const Element& e) { return e.name == "vertex"; });
   if (vertex == header.elements.end())
     throw FormatError(FileLocation::at_line(file, header.end_line), "expected an element 'vertex' in the header");
   bind_vertex(*vertex, file);
@@ -402,8 +415,8 @@ class AsciiSource {
 
   std::string_view text_;
   std::size_t pos_;
-  std::size_t line_;        // the line at pos_
-  std::size_t token_line_;  // the line of the last token read
+  std::size_t line_;           // the line at pos_
+  std::size_t token_line_;     // the line of the last token read
   std::size_t item_line_ = 0;  // the line where the current element entry began
   bool item_begins_ = true;
   const fs::path& file_;
@@ -476,8 +489,8 @@ class BinarySource {
 
   // The throwing paths are out of line, so that the reading paths inline.
   [[noreturn]] void truncated(std::size_t n, const Item& item) const {
-    cursor_.fail("file ends early: expected " + std::to_string(n) + " more byte(s) for " + describe(item) +
-                 ", only " + std::to_string(cursor_.remaining()) + " left");
+    cursor_.fail("file ends early: expected " + std::to_string(n) + " more byte(s) for " + describe(item) + ", only " +
+                 std::to_string(cursor_.remaining()) + " left");
   }
   [[noreturn]] void not_finite(double v, const Item& item) const {
     throw FormatError(last(), "expected a finite " + describe(item) + ", found " + (std::isnan(v) ? "nan" : "inf"));
@@ -539,8 +552,10 @@ void read_vertices(Source& source, const Element& e, PointCloud& out, const Prog
   for (Eigen::Index i = 0; i < n; ++i) {
     for (const Property& p : e.properties) {
       const Item item{e, static_cast<std::size_t>(i), p};
-      if (p.slot == kSkip) skip_property(source, p, item);
-      else row[static_cast<std::size_t>(p.slot)] = p.slot >= kColorSlot ? color(source, item) : source.value(p.type, item);
+      if (p.slot == kSkip)
+        skip_property(source, p, item);
+      else
+        row[static_cast<std::size_t>(p.slot)] = p.slot >= kColorSlot ? color(source, item) : source.value(p.type, item);
     }
     source.end_item(e, static_cast<std::size_t>(i));
     for (int c = 0; c < 3; ++c) {
@@ -570,8 +585,8 @@ template <class Source>
 void read_polygon(Source& source, const Item& item, std::size_t vertex_count, std::vector<int>& triangles) {
   const std::size_t n = source.length(item.property, item);
   if (n < 3)
-    throw FormatError(source.last(), "expected a polygon of at least 3 corners in face " +
-                                         std::to_string(item.index) + ", found " + std::to_string(n));
+    throw FormatError(source.last(), "expected a polygon of at least 3 corners in face " + std::to_string(item.index) +
+                                         ", found " + std::to_string(n));
   const int first = vertex_index(source, item, vertex_count);
   int previous = vertex_index(source, item, vertex_count);
   for (std::size_t k = 2; k < n; ++k) {
@@ -588,8 +603,10 @@ void read_faces(Source& source, const Element& e, std::size_t vertex_count, std:
   for (std::size_t i = 0; i < e.count; ++i) {
     for (const Property& p : e.properties) {
       const Item item{e, i, p};
-      if (p.slot == kCorners) read_polygon(source, item, vertex_count, triangles);
-      else skip_property(source, p, item);
+      if (p.slot == kCorners)
+        read_polygon(source, item, vertex_count, triangles);
+      else
+        skip_property(source, p, item);
     }
     source.end_item(e, i);
     report(progress, source, i);
@@ -603,9 +620,12 @@ TriangleMesh read_body(Source source, const Header& header, std::size_t vertex_c
   std::vector<int> triangles;
   for (const Element& e : header.elements) {
     source.check_count(e);
-    if (e.name == "vertex") read_vertices(source, e, mesh.vertices, progress);
-    else if (e.name == "face") read_faces(source, e, vertex_count, triangles, progress);
-    else skip_element(source, e, progress);
+    if (e.name == "vertex")
+      read_vertices(source, e, mesh.vertices, progress);
+    else if (e.name == "face")
+      read_faces(source, e, vertex_count, triangles, progress);
+    else
+      skip_element(source, e, progress);
   }
   source.finish();
   using RowMajor = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;

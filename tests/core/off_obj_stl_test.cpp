@@ -378,6 +378,17 @@ TEST(StlRead, BinaryReportsProgress) {
   EXPECT_LE(reports.back(), 1.0);
 }
 
+TEST(OffRead, ReportsProgressUpToOne) {
+  std::string text = "OFF\n100000 0 0\n";
+  for (int i = 0; i < 100000; ++i) text += "0.25 0.5 0.75\n";
+  std::vector<double> reports;
+  const TriangleMesh mesh = read_off(text, "p.off", [&](double fraction) { reports.push_back(fraction); });
+  EXPECT_EQ(mesh.vertex_count(), 100000);
+  ASSERT_GE(reports.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end()));
+  EXPECT_EQ(reports.back(), 1.0);
+}
+
 // ---- malformed input: each error names file, line or byte, and what was expected
 
 TEST(OffErrors, EmptyOrMislabeledFile) {
@@ -557,6 +568,12 @@ TEST(RealData, KittenPointsHaveNoFaces) {
   const TriangleMesh mesh = read_data("points_3/kitten.off");
   EXPECT_EQ(mesh.vertex_count(), 5210);
   EXPECT_EQ(mesh.face_count(), 0);
+}
+
+// prim.off declares 7 faces and lists 8: the extra line is not silently lost.
+TEST(RealData, PrimOffListsMoreFacesThanDeclared) {
+  EXPECT_THAT(error_of([] { read_data("meshes/prim.off"); }),
+              AllOf(HasSubstr("prim.off:24"), HasSubstr("end of the file after the last of 7 faces")));
 }
 
 TEST(RealData, ElephantThroughEveryFormat) {

@@ -98,8 +98,8 @@ testing::AssertionResult same_bits(const Eigen::MatrixX3d& a, const Eigen::Matri
   for (Eigen::Index i = 0; i < a.rows(); ++i)
     for (int c = 0; c < 3; ++c)
       if (std::bit_cast<std::uint64_t>(a(i, c)) != std::bit_cast<std::uint64_t>(b(i, c)))
-        return testing::AssertionFailure() << "(" << i << ", " << c << "): " << std::hexfloat << a(i, c) << " vs "
-                                           << b(i, c);
+        return testing::AssertionFailure()
+               << "(" << i << ", " << c << "): " << std::hexfloat << a(i, c) << " vs " << b(i, c);
   return testing::AssertionSuccess();
 }
 
@@ -211,20 +211,20 @@ void expect_hand_mesh(const TriangleMesh& mesh) {
 // A valid ascii file; the malformed cases below each change one thing.
 //                                   line
 const std::string kAscii =
-    "ply\n"                                        //  1
-    "format ascii 1.0\n"                           //  2
-    "comment three points\n"                       //  3
-    "element vertex 3\n"                           //  4
-    "property float x\n"                           //  5
-    "property float y\n"                           //  6
-    "property float z\n"                           //  7
-    "element face 1\n"                             //  8
-    "property list uchar int vertex_indices\n"     //  9
-    "end_header\n"                                 // 10
-    "0 0 0\n"                                      // 11
-    "1 0 0\n"                                      // 12
-    "0 1 0\n"                                      // 13
-    "3 0 1 2\n";                                   // 14
+    "ply\n"                                     //  1
+    "format ascii 1.0\n"                        //  2
+    "comment three points\n"                    //  3
+    "element vertex 3\n"                        //  4
+    "property float x\n"                        //  5
+    "property float y\n"                        //  6
+    "property float z\n"                        //  7
+    "element face 1\n"                          //  8
+    "property list uchar int vertex_indices\n"  //  9
+    "end_header\n"                              // 10
+    "0 0 0\n"                                   // 11
+    "1 0 0\n"                                   // 12
+    "0 1 0\n"                                   // 13
+    "3 0 1 2\n";                                // 14
 
 std::string replaced(std::string text, std::string_view from, std::string_view to) {
   const std::size_t at = text.find(from);
@@ -301,8 +301,8 @@ TEST(PlyRead, HandMadeBinaryInBothByteOrdersAndIndexTypes) {
     for (const bool int16 : {false, true})
       for (const bool crlf_header : {false, true}) {
         SCOPED_TRACE(testing::Message() << (order == std::endian::big ? "big" : "little") << " endian, "
-                                        << (int16 ? "int16" : "uint32") << " indices, "
-                                        << (crlf_header ? "CRLF" : "LF") << " header");
+                                        << (int16 ? "int16" : "uint32") << " indices, " << (crlf_header ? "CRLF" : "LF")
+                                        << " header");
         expect_hand_mesh(read_ply(hand_binary(order, int16, crlf_header), kFile));
       }
 }
@@ -558,8 +558,9 @@ TEST(PlyMalformed, MissingOrPartialVertexProperties) {
 }
 
 TEST(PlyMalformed, BadColourValues) {
-  const std::string text = replaced(kAscii, "property float z\n", "property float z\nproperty ushort red\n"
-                                                                  "property ushort green\nproperty ushort blue\n");
+  const std::string text = replaced(kAscii, "property float z\n",
+                                    "property float z\nproperty ushort red\n"
+                                    "property ushort green\nproperty ushort blue\n");
   const std::string good = replaced(replaced(replaced(text, "0 0 0\n", "0 0 0 1 2 3\n"), "1 0 0\n", "1 0 0 4 5 6\n"),
                                     "0 1 0\n", "0 1 0 7 8 9\n");
   EXPECT_EQ(read_ply(good, kFile).vertices.colors(2, 2), 9);
@@ -585,10 +586,9 @@ long declared(const std::string& bytes, const std::string& element) {
 }
 
 TEST(PlyRealData, CountsMatchTheHeadersAndRoundTrip) {
-  for (const std::string name :
-       {"/meshes/sphere.ply", "/meshes/b9.ply", "/meshes/colored_tetra.ply", "/points_3/b9_training.ply",
-        "/points_3/ball.ply", "/points_3/building.ply", "/points_3/example.ply", "/points_3/hippo1.ply",
-        "/points_3/colors.ply"}) {
+  for (const std::string name : {"/meshes/sphere.ply", "/meshes/b9.ply", "/meshes/colored_tetra.ply",
+                                 "/points_3/b9_training.ply", "/points_3/ball.ply", "/points_3/building.ply",
+                                 "/points_3/example.ply", "/points_3/hippo1.ply", "/points_3/colors.ply"}) {
     SCOPED_TRACE(name);
     const std::string bytes = cgal_file(name);
     const TriangleMesh mesh = read_ply(bytes, name);
@@ -608,7 +608,8 @@ TriangleMesh read_off_for_test(const std::string& text) {
   in >> magic >> v >> f >> e;
   TriangleMesh mesh;
   mesh.vertices.positions.resize(v, 3);
-  for (int i = 0; i < v; ++i) in >> mesh.vertices.positions(i, 0) >> mesh.vertices.positions(i, 1) >> mesh.vertices.positions(i, 2);
+  for (int i = 0; i < v; ++i)
+    in >> mesh.vertices.positions(i, 0) >> mesh.vertices.positions(i, 1) >> mesh.vertices.positions(i, 2);
   mesh.faces.resize(f, 3);
   for (int i = 0; i < f; ++i) {
     int n = 0;
