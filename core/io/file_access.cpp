@@ -90,8 +90,10 @@ int create_temporary(const fs::path& path, fs::path& temp) {
   static std::atomic<unsigned> counter{0};
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   for (int attempt = 0; attempt < 100; ++attempt) {
-    temp = folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                     std::to_string(counter++));
+    std::string name = ".";  // appended piecewise: GCC 12 misreports chained '+' here (-Wrestrict)
+    name.append(path.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
+    name.append("-").append(std::to_string(counter++));
+    temp = folder / name;
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return fd;
     if (errno != EEXIST) throw IoError(os_error("cannot create a temporary file in", folder, errno));

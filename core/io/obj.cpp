@@ -117,19 +117,19 @@ bool valid_references(std::string_view rest) {
 
 // The vertex of a corner "v", "v/vt", "v//vn" or "v/vt/vn", 0-based.
 int corner_vertex(Record& record, std::string_view corner, std::size_t k, ObjData& data) {
-  const auto fail = [&](const std::string& problem) {
-    record.fail("corner " + std::to_string(k + 1) + " " + quoted(corner) + " of the face: " + problem);
+  const auto about = [&](const std::string& problem) {
+    return "corner " + std::to_string(k + 1) + " " + quoted(corner) + " of the face: " + problem;
   };
   const std::size_t slash = std::min(corner.find('/'), corner.size());
   const auto index = parse_int(corner.substr(0, slash));
   if (!index || !valid_references(corner.substr(slash)))
-    fail("expected 'v', 'v/vt', 'v//vn' or 'v/vt/vn' with integer indices");
-  if (*index == 0) fail("vertex index 0 is invalid: expected 1-based or negative indices");
+    record.fail(about("expected 'v', 'v/vt', 'v//vn' or 'v/vt/vn' with integer indices"));
+  if (*index == 0) record.fail(about("vertex index 0 is invalid: expected 1-based or negative indices"));
   const long long known = data.vertex_count();
   if (*index < 0 && -*index > known)
-    fail("vertex index " + std::to_string(*index) + " is out of range: only " + std::to_string(known) +
-         " vertices are defined before it");
-  if (*index > INT_MAX) fail("vertex index " + std::to_string(*index) + " is out of range");
+    record.fail(about("vertex index " + std::to_string(*index) + " is out of range: only " + std::to_string(known) +
+                      " vertices are defined before it"));
+  if (*index > INT_MAX) record.fail(about("vertex index " + std::to_string(*index) + " is out of range"));
   if (*index > known && *index > data.forward_index) {
     data.forward_index = *index;
     data.forward_line = record.line;

@@ -17,8 +17,9 @@ namespace scanstation::io {
 /// property and element, lists included, is skipped by its declared type, and
 /// elements may come in any order. Integer colours must lie in 0..255, float
 /// colours in [0, 1] (scaled to 0..255); positions, normals and colours must be
-/// finite. Ascii values are read as one token stream (a writer may wrap
-/// lines); bytes after the last binary element are ignored.
+/// finite. In ascii each element entry starts on a new line and ends with a
+/// line (it may wrap onto several); bytes after the last binary element are
+/// ignored (some writers pad), blank text after the last ascii one too.
 /// bytes     the whole file; file  its name, for error messages
 /// progress  called with the fraction read, may be empty
 /// Returns #V vertices (normals/colours only when all three properties exist)

@@ -111,6 +111,7 @@ TriangleMesh read_binary(std::string_view bytes, const std::filesystem::path& fi
     cursor.skip(2, "the attribute byte count");
     if (progress && (t + 1) % kProgressStride == 0) progress(static_cast<double>(t + 1) / count);
   }
+  if (progress) progress(1.0);
   return indexed_mesh(merger, triangles);
 }
 

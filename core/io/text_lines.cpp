@@ -20,7 +20,13 @@ std::string quoted(std::string_view token) {
 }
 
 LineTokens::LineTokens(std::string_view line, FileLocation where, bool comma_separates)
-    : rest_(line), where_(std::move(where)), comma_separates_(comma_separates) {}
+    : rest_(line), owned_file_(std::move(where.file)), line_(where.line), comma_separates_(comma_separates) {}
+
+LineTokens::LineTokens(std::string_view line, const std::filesystem::path& file, std::size_t line_number,
+                       bool comma_separates)
+    : rest_(line), file_(&file), line_(line_number), comma_separates_(comma_separates) {}
+
+FileLocation LineTokens::where() const { return FileLocation::at_line(file_ ? *file_ : owned_file_, line_); }
 
 void LineTokens::skip_separators() {
   std::size_t i = 0;
@@ -49,7 +55,7 @@ std::size_t LineTokens::remaining() const {
   return n;
 }
 
-void LineTokens::fail(const std::string& message) const { throw FormatError(where_, message); }
+void LineTokens::fail(const std::string& message) const { throw FormatError(where(), message); }
 
 double LineTokens::next_double(std::string_view what) {
   const std::string_view token = next();
@@ -110,7 +116,9 @@ void TextLines::require_next(std::string_view expected) {
                       "unexpected end of file: expected " + std::string(expected));
 }
 
-LineTokens TextLines::tokens(bool comma_separates) const { return LineTokens(line_, here(), comma_separates); }
+LineTokens TextLines::tokens(bool comma_separates) const {
+  return LineTokens(line_, file_, line_number_, comma_separates);
+}
 
 void TextLines::fail(const std::string& message) const { throw FormatError(here(), message); }
 

@@ -17,6 +17,10 @@ namespace scanstation::io {
 class LineTokens {
  public:
   LineTokens(std::string_view line, FileLocation where, bool comma_separates = false);
+  /// Refers to `file` without copying it (the caller keeps it alive): the
+  /// cheap form for a reader's inner loop.
+  LineTokens(std::string_view line, const std::filesystem::path& file, std::size_t line_number,
+             bool comma_separates = false);
 
   /// The next token, or an empty view at the end of the line.
   std::string_view next();
@@ -33,12 +37,14 @@ class LineTokens {
   void expect_end(std::string_view what_was_read);
 
   [[noreturn]] void fail(const std::string& message) const;
-  const FileLocation& where() const { return where_; }
+  FileLocation where() const;
 
  private:
   void skip_separators();
   std::string_view rest_;
-  FileLocation where_;
+  std::filesystem::path owned_file_;              // used when file_ is null
+  const std::filesystem::path* file_ = nullptr;  // borrowed, not copied per line
+  std::size_t line_ = 0;
   bool comma_separates_;
 };
 

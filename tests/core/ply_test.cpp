@@ -7,8 +7,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -565,6 +567,33 @@ TEST(PlyMalformed, BadColourValues) {
                                     "0 1 0\n", "0 1 0 7 8 9\n");
   EXPECT_EQ(read_ply(good, kFile).vertices.colors(2, 2), 9);
   EXPECT_THAT(error_of(replaced(good, "4 5 6", "4 500 6")), AllOf(HasSubstr("file.ply:15"), HasSubstr("0..255")));
+}
+
+// Corrupted bytes anywhere (header counts and types included) must end in a
+// mesh or a FormatError: never a crash, a huge allocation or another error.
+TEST(PlyMalformed, RandomCorruptionOnlyEverThrowsFormatError) {
+  const std::vector<std::string> originals{kAscii, hand_binary(std::endian::little, false, false),
+                                           hand_binary(std::endian::big, true, true),
+                                           write_ply(random_mesh(11, true, true, 6, 4), Encoding::ascii)};
+  std::mt19937_64 rng(2024);
+  int errors = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::string bytes = originals[static_cast<std::size_t>(trial) % originals.size()];
+    for (int flips = 1 + static_cast<int>(rng() % 3); flips > 0; --flips) {
+      const std::size_t at = rng() % bytes.size();
+      bytes[at] = rng() % 2 ? static_cast<char>(rng()) : "0123456789 \n-.e"[rng() % 16];
+    }
+    if (rng() % 4 == 0) bytes.resize(rng() % bytes.size());
+    try {
+      read_ply(bytes, kFile);
+    } catch (const FormatError& e) {
+      ++errors;
+      EXPECT_THAT(e.what(), HasSubstr("file.ply"));
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "trial " << trial << ": " << e.what();
+    }
+  }
+  EXPECT_GT(errors, 1000);  // the corruption does reach the checks
 }
 
 // ---- Real data (CGAL's demo files) ----------------------------------------------
