@@ -16,6 +16,33 @@ void append_int(std::string& out, long long x) {
   out.append(buffer, result.ptr);
 }
 
+void append_ascii_vertices_and_faces(std::string& out, const TriangleMesh& mesh) {
+  const PointCloud& v = mesh.vertices;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      if (c > 0) out += ' ';
+      append_double(out, v.positions(i, c));
+    }
+    for (int c = 0; v.has_normals() && c < 3; ++c) {
+      out += ' ';
+      append_double(out, v.normals(i, c));
+    }
+    for (int c = 0; v.has_colors() && c < 3; ++c) {
+      out += ' ';
+      append_int(out, v.colors(i, c));
+    }
+    out += '\n';
+  }
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    out += '3';
+    for (int c = 0; c < 3; ++c) {
+      out += ' ';
+      append_int(out, mesh.faces(f, c));
+    }
+    out += '\n';
+  }
+}
+
 std::optional<double> parse_double(std::string_view token) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   if (token.empty()) return std::nullopt;

@@ -1,6 +1,8 @@
 // Locale-independent number <-> text conversion for the text file formats.
 #pragma once
 
+#include "core/triangle_mesh.h"
+
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,6 +14,10 @@ namespace scanstation::io {
 /// to its input point by value.
 void append_double(std::string& out, double x);
 void append_int(std::string& out, long long x);
+
+/// Appends the vertex and face lines that OFF and ascii PLY share:
+/// "x y z[ nx ny nz][ r g b]" per vertex, then "3 a b c" per face.
+void append_ascii_vertices_and_faces(std::string& out, const TriangleMesh& mesh);
 
 /// Parses a whole token as a double ("+1.5", "-2e-3", "7"); nullopt when the
 /// token is not entirely a number. NaN and infinities parse (the caller

@@ -232,26 +232,7 @@ std::string write_off(const TriangleMesh& mesh) {
   out += ' ';
   append_int(out, mesh.face_count());
   out += " 0\n";
-  for (Eigen::Index i = 0; i < v.size(); ++i) {
-    for (int a = 0; a < 3; ++a) {
-      if (a > 0) out += ' ';
-      append_double(out, v.positions(i, a));
-    }
-    for (int a = 0; v.has_normals() && a < 3; ++a) {
-      out += ' ';
-      append_double(out, v.normals(i, a));
-    }
-    for (int a = 0; v.has_colors() && a < 3; ++a) {
-      out += ' ';
-      append_int(out, v.colors(i, a));
-    }
-    out += '\n';
-  }
-  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
-    out += '3';
-    for (int a = 0; a < 3; ++a) (out += ' ', append_int(out, mesh.faces(f, a)));
-    out += '\n';
-  }
+  append_ascii_vertices_and_faces(out, mesh);
   return out;
 }
 

@@ -670,33 +670,6 @@ std::string header_text(const TriangleMesh& mesh, Encoding encoding) {
   return h;
 }
 
-void append_ascii_body(std::string& out, const TriangleMesh& mesh) {
-  const PointCloud& v = mesh.vertices;
-  for (Eigen::Index i = 0; i < v.size(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      if (c > 0) out += ' ';
-      append_double(out, v.positions(i, c));
-    }
-    for (int c = 0; v.has_normals() && c < 3; ++c) {
-      out += ' ';
-      append_double(out, v.normals(i, c));
-    }
-    for (int c = 0; v.has_colors() && c < 3; ++c) {
-      out += ' ';
-      append_int(out, v.colors(i, c));
-    }
-    out += '\n';
-  }
-  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
-    out += '3';
-    for (int c = 0; c < 3; ++c) {
-      out += ' ';
-      append_int(out, mesh.faces(f, c));
-    }
-    out += '\n';
-  }
-}
-
 void append_binary_body(std::string& out, const TriangleMesh& mesh, std::endian order) {
   const PointCloud& v = mesh.vertices;
   for (Eigen::Index i = 0; i < v.size(); ++i) {
@@ -733,7 +706,7 @@ std::string write_ply(const TriangleMesh& mesh, Encoding encoding) {
   if (encoding == Encoding::ascii) {
     out.reserve(out.size() + static_cast<std::size_t>(mesh.vertex_count()) * per_vertex * 24 +
                 static_cast<std::size_t>(mesh.face_count()) * 36);
-    append_ascii_body(out, mesh);
+    append_ascii_vertices_and_faces(out, mesh);
   } else {
     out.reserve(out.size() + static_cast<std::size_t>(mesh.vertex_count()) * (per_vertex * 8 + 3) +
                 static_cast<std::size_t>(mesh.face_count()) * 13);
