@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace scanstation {
 
@@ -59,7 +60,19 @@ void SvgCanvas::polygon(const Eigen::MatrixX2d& V, const SvgStyle& style) {
 void SvgCanvas::segments(const Eigen::MatrixX2d& V, const Eigen::MatrixX2i& E, const SvgStyle& style) {
   body_ += "  <path fill=\"none\" stroke=\"" + style.stroke + "\" stroke-width=\"";
   io::append_double(body_, px_to_data(style.stroke_px));
-  body_ += "\" stroke-linecap=\"round\" d=\"";
+  body_ += "\" stroke-linecap=\"round\"";
+  if (!style.dash.empty()) {
+    // The pattern is given in screen pixels, drawn in data units.
+    body_ += " stroke-dasharray=\"";
+    std::istringstream pattern(style.dash);
+    double px = 0.0;
+    for (bool first = true; pattern >> px; first = false) {
+      if (!first) body_ += ' ';
+      io::append_double(body_, px_to_data(px));
+    }
+    body_ += "\"";
+  }
+  body_ += " d=\"";
   for (Eigen::Index e = 0; e < E.rows(); ++e) {
     body_ += e > 0 ? " M" : "M";
     append_xy(body_, V(E(e, 0), 0), V(E(e, 0), 1));

@@ -14,6 +14,7 @@ struct SvgStyle {
   std::string fill = "none";
   double stroke_px = 1.5;  ///< line width in screen pixels, independent of the data's scale
   double point_px = 2.5;   ///< dot radius in screen pixels
+  std::string dash;        ///< SVG dash pattern in screen pixels ("4 3"), empty for solid
 };
 
 /// Coordinates are written exactly (shortest round-trip decimals) in data

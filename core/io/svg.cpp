@@ -177,8 +177,8 @@ Polygon2 read_svg(std::string_view text, const std::filesystem::path& file) {
 
 std::string write_svg(const Polygon2& polygon) {
   SvgCanvas canvas(bounding_box(polygon.vertices));
-  canvas.polygon(polygon.vertices, SvgStyle{"#1f4e9c", "#dce6f5", 1.5, 2.5});
-  canvas.points(polygon.vertices, SvgStyle{"none", "#c0392b", 1.5, 2.5});
+  canvas.polygon(polygon.vertices, SvgStyle{"#1f4e9c", "#dce6f5", 1.5, 2.5, ""});
+  canvas.points(polygon.vertices, SvgStyle{"none", "#c0392b", 1.5, 2.5, ""});
   return canvas.str();
 }
 

@@ -1,0 +1,113 @@
+// scanstation reconstruct IN -o OUT: a closed boundary through all points by
+// γ-graph constriction (thesis Chapter 5); 2D or 3D from the input.
+#include "command.h"
+#include "core/describe.h"
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/boundary_svg.h"
+
+#include <cstdio>
+#include <optional>
+
+namespace scanstation::app {
+
+namespace {
+
+nlohmann::json statistics_json(const BoundaryStatistics& s) {
+  return {{"points", s.input_points},
+          {"duplicates_merged", s.duplicates_merged},
+          {"boundary_vertices", s.boundary_vertices},
+          {"interior_vertices", s.interior_vertices},
+          {"all_on_boundary", s.all_on_boundary},
+          {"delaunay_cells", s.delaunay_cells},
+          {"removed_cells", s.removed_cells},
+          {"c0_used", nullptr}};
+}
+
+class ReconstructCommand final : public Command {
+ public:
+  explicit ReconstructCommand(CLI::App& parent)
+      : Command(parent, "reconstruct", "Closed boundary through scattered points (γ-graph constriction)") {
+    cli_->add_option("input", input_, "Points: xyz (2 or 3 columns), ply, off, obj, stl vertices")->required();
+    cli_->add_option("-o,--output", output_, "Boundary: a mesh (3D) or a polygon as svg / text (2D)")->required();
+    cli_->add_option("--format", format_, "Input format, when the extension does not tell");
+    auto* more = cli_->add_option("--continue", options_.extra_removals,
+                                  "Further removals once every point is on the boundary (§5.3)");
+    auto* until = cli_->add_option("--until-indicator", until_,
+                                   "Once every point is on the boundary, keep removing while the smallest "
+                                   "γ-indicator (3D: sum of two) is below this value");
+    more->excludes(until);
+    cli_->add_option("--svg", svg_, "2D: draw the Delaunay graph, removed triangles and boundary (Fig. 5.2)");
+    cli_->footer("Output vertices are the distinct input points, bit for bit; duplicates are merged and counted.");
+  }
+
+  void run(CommandContext& context) override {
+    io::check_writable(output_, context.overwrite);
+    if (svg_) io::check_writable(*svg_, context.overwrite);
+    options_.until_indicator = until_;
+    StageTimer read_timer(context.report, "read");
+    const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
+    context.progress.finish();
+    read_timer.stop();
+    options_.progress = context.progress.stage("constrict");
+    const io::WriteOptions write{std::nullopt, std::nullopt, context.overwrite};
+    nlohmann::json& result = context.report["result"];
+    if (cloud.dimension == 2) {
+      if (svg_ && io::resolve_format(*svg_, std::nullopt) != io::FileFormat::svg)
+        throw InvalidInput("--svg " + svg_->string() + ": expected a file name ending in .svg");
+      const CurveReconstruction r = reconstruct_curve(cloud.positions.leftCols(2), options_);
+      context.progress.finish();
+      record_times(context, r.statistics);
+      StageTimer write_timer(context.report, "write");
+      io::write_polygon(output_, r.polygon, write);
+      if (svg_) io::write_file_atomically(*svg_, boundary_svg(r), context.overwrite);
+      result = statistics_json(r.statistics);
+      result["boundary"] = describe(r.polygon);
+      result["area"] = r.statistics.enclosed_measure;
+      summarise(r.statistics, std::to_string(r.polygon.size()) + "-gon");
+    } else {
+      if (svg_) throw InvalidInput("--svg draws 2D results; the input has three coordinates");
+      const SurfaceReconstruction r = reconstruct_surface(cloud.positions, options_);
+      context.progress.finish();
+      record_times(context, r.statistics);
+      StageTimer write_timer(context.report, "write");
+      io::write_mesh(output_, r.mesh, write);
+      result = statistics_json(r.statistics);
+      result["boundary"] = describe(r.mesh);
+      result["volume"] = r.statistics.enclosed_measure;
+      summarise(r.statistics, std::to_string(r.mesh.face_count()) + " triangles");
+    }
+  }
+
+ private:
+  static void record_times(CommandContext& context, const BoundaryStatistics& s) {
+    context.report.add_seconds("delaunay", s.delaunay_seconds);
+    context.report.add_seconds("constriction", s.constriction_seconds);
+  }
+
+  void summarise(const BoundaryStatistics& s, const std::string& shape) const {
+    std::printf("wrote %s: %s through %lld of %lld distinct points (%lld duplicates merged)\n", output_.c_str(),
+                shape.c_str(), static_cast<long long>(s.boundary_vertices),
+                static_cast<long long>(s.boundary_vertices + static_cast<Eigen::Index>(s.interior_vertices.size())),
+                static_cast<long long>(s.duplicates_merged));
+    if (!s.all_on_boundary)
+      std::printf("constriction locked: %zu points stayed inside (listed in the report); the boundary written is the "
+                  "best found\n",
+                  s.interior_vertices.size());
+  }
+
+  std::filesystem::path input_, output_;
+  std::optional<std::string> format_;
+  std::optional<double> until_;
+  std::optional<std::filesystem::path> svg_;
+  ConstrictionOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_reconstruct_command(CLI::App& parent) {
+  return std::make_unique<ReconstructCommand>(parent);
+}
+
+}  // namespace scanstation::app

@@ -1,0 +1,122 @@
+#include "reconstruct/boundary_reconstruction.h"
+
+#include "core/errors.h"
+#include "core/unique_points.h"
+
+#include <Eigen/Geometry>
+
+#include <chrono>
+#include <cmath>
+
+namespace scanstation {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Distinct rows of P (first occurrences, input order) and the count dropped.
+template <int D>
+Eigen::Matrix<double, Eigen::Dynamic, D> distinct(const Eigen::Matrix<double, Eigen::Dynamic, D>& P,
+                                                  Eigen::Index& duplicates) {
+  Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(P.rows(), 3);
+  padded.leftCols(D) = P;
+  std::vector<Eigen::Index> first, map;
+  duplicates = unique_points(padded, first, map);
+  Eigen::Matrix<double, Eigen::Dynamic, D> out(static_cast<Eigen::Index>(first.size()), D);
+  for (std::size_t k = 0; k < first.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = P.row(first[k]);
+  return out;
+}
+
+void require_finite(const Eigen::MatrixXd& P) {
+  if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
+}
+
+template <int D>
+void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constriction<D>& c) {
+  s.delaunay_cells = static_cast<std::size_t>(dt.cells.rows());
+  s.removed_cells = c.removed_cells;
+  s.interior_vertices = std::move(c.interior_vertices);
+  s.all_on_boundary = c.all_on_boundary;
+  s.boundary_vertices = dt.points.rows() - static_cast<Eigen::Index>(s.interior_vertices.size());
+}
+
+}  // namespace
+
+SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ConstrictionOptions& options) {
+  require_finite(points);
+  SurfaceReconstruction out;
+  BoundaryStatistics& s = out.statistics;
+  s.input_points = points.rows();
+  const Eigen::MatrixX3d P = distinct<3>(points, s.duplicates_merged);
+
+  auto start = std::chrono::steady_clock::now();
+  const DelaunayComplex<3> dt = delaunay_complex(P);
+  s.delaunay_seconds = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  Constriction<3> c = constrict(dt, options);
+  s.constriction_seconds = seconds_since(start);
+
+  out.mesh.vertices.positions = P;
+  out.mesh.faces = c.boundary;
+  std::vector<Eigen::Index> kept;
+  for (std::size_t k = 0; k < c.kept.size(); ++k)
+    if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
+  out.interior.resize(static_cast<Eigen::Index>(kept.size()), 4);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const auto t = dt.cells.row(kept[k]);
+    out.interior.row(static_cast<Eigen::Index>(k)) = t;
+    const Eigen::Vector3d a = P.row(t(0)), b = P.row(t(1)), cc = P.row(t(2)), d = P.row(t(3));
+    s.enclosed_measure += (b - a).cross(cc - a).dot(d - a) / 6.0;
+  }
+  fill_statistics(s, dt, c);
+  return out;
+}
+
+CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ConstrictionOptions& options) {
+  require_finite(points);
+  CurveReconstruction out;
+  BoundaryStatistics& s = out.statistics;
+  s.input_points = points.rows();
+  out.points = distinct<2>(points, s.duplicates_merged);
+
+  auto start = std::chrono::steady_clock::now();
+  const DelaunayComplex<2> dt = delaunay_complex(out.points);
+  s.delaunay_seconds = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  Constriction<2> c = constrict(dt, options);
+  s.constriction_seconds = seconds_since(start);
+
+  // The boundary edges chain into one cycle: each boundary vertex has exactly
+  // one outgoing edge.
+  std::vector<int> next(static_cast<std::size_t>(out.points.rows()), -1);
+  for (Eigen::Index e = 0; e < c.boundary.rows(); ++e) next[static_cast<std::size_t>(c.boundary(e, 0))] = c.boundary(e, 1);
+  const int start_vertex = c.boundary(0, 0);
+  int v = start_vertex;
+  do {
+    out.order.push_back(v);
+    v = next[static_cast<std::size_t>(v)];
+  } while (v != start_vertex && v >= 0 && out.order.size() <= static_cast<std::size_t>(c.boundary.rows()));
+  if (v != start_vertex || out.order.size() != static_cast<std::size_t>(c.boundary.rows()))
+    throw TopologyError("constriction left a boundary that is not one simple cycle (please report this input)");
+  out.polygon.vertices.resize(static_cast<Eigen::Index>(out.order.size()), 2);
+  for (std::size_t k = 0; k < out.order.size(); ++k)
+    out.polygon.vertices.row(static_cast<Eigen::Index>(k)) = out.points.row(out.order[k]);
+
+  std::vector<Eigen::Index> kept;
+  for (std::size_t k = 0; k < c.kept.size(); ++k)
+    if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
+  out.interior.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const auto t = dt.cells.row(kept[k]);
+    out.interior.row(static_cast<Eigen::Index>(k)) = t;
+    const Eigen::Vector2d a = out.points.row(t(0)), b = out.points.row(t(1)), d = out.points.row(t(2));
+    s.enclosed_measure += 0.5 * ((b - a).x() * (d - a).y() - (b - a).y() * (d - a).x());
+  }
+  out.delaunay = dt.cells;
+  fill_statistics(s, dt, c);
+  return out;
+}
+
+}  // namespace scanstation

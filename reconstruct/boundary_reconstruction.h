@@ -1,0 +1,59 @@
+// From scattered points to a closed boundary: duplicate merging, Delaunay
+// triangulation, constriction (thesis Chapter 5), and the result as a mesh or
+// polygon with what a report needs.
+#pragma once
+
+#include "core/polygon.h"
+#include "core/triangle_mesh.h"
+#include "reconstruct/constriction.h"
+
+#include <vector>
+
+namespace scanstation {
+
+struct BoundaryStatistics {
+  Eigen::Index input_points = 0;
+  Eigen::Index duplicates_merged = 0;     ///< input points equal to an earlier one, dropped
+  Eigen::Index boundary_vertices = 0;
+  std::vector<int> interior_vertices;     ///< distinct points not reached (indices into the distinct points)
+  bool all_on_boundary = false;
+  std::size_t delaunay_cells = 0;
+  std::size_t removed_cells = 0;
+  double enclosed_measure = 0.0;          ///< area (2D) or volume (3D) of the kept cells (§5.8)
+  double delaunay_seconds = 0.0;
+  double constriction_seconds = 0.0;
+};
+
+/// A closed polyhedron through the points.
+/// mesh       vertices: the distinct input points in input order (first
+///            occurrences, bit-identical values); faces: the boundary,
+///            counter-clockwise seen from outside
+/// interior   #T by 4 kept tetrahedra (indices into mesh vertices): a
+///            tetrahedralization of the enclosed solid (§5.8)
+struct SurfaceReconstruction {
+  TriangleMesh mesh;
+  Eigen::MatrixX4i interior;
+  BoundaryStatistics statistics;
+};
+
+/// A simple polygon through the planar points.
+/// points    the distinct input points in input order
+/// polygon   the boundary, counter-clockwise; `order` its vertices as indices
+///           into `points`
+/// interior  #T by 3 kept triangles (indices into `points`)
+/// delaunay  all Delaunay triangles, kept and removed (for pictures)
+struct CurveReconstruction {
+  Eigen::MatrixX2d points;
+  Polygon2 polygon;
+  std::vector<int> order;
+  Eigen::MatrixX3i interior;
+  Eigen::MatrixX3i delaunay;
+  BoundaryStatistics statistics;
+};
+
+/// Throws InvalidInput for fewer than 4 (3) distinct points, or points all in
+/// one plane (on one line).
+SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ConstrictionOptions& options = {});
+CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ConstrictionOptions& options = {});
+
+}  // namespace scanstation

@@ -1,0 +1,286 @@
+#include "reconstruct/constriction.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+
+namespace scanstation {
+
+namespace {
+
+// Vertices of the face opposite local vertex i, ordered so that the face is
+// counter-clockwise seen from outside a positively oriented tetrahedron.
+constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+double signed_magnitude(double r_over_R, double side_vertex, double side_centre) {
+  const double magnitude = std::clamp(1.0 - r_over_R, 0.0, 1.0);
+  if (side_vertex * side_centre > 0) return magnitude;
+  if (side_vertex * side_centre < 0) return -magnitude;
+  return 0.0;
+}
+
+// How many boundary triangles use each undirected edge, for the 3D
+// removability test "the opposite edge is not already in the boundary".
+// Open addressing over 64-bit keys; counts drop to zero but keys stay, since
+// the same edge may come back.
+class EdgeCounter {
+ public:
+  explicit EdgeCounter(std::size_t expected) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    keys_.assign(capacity, kEmpty);
+    counts_.assign(capacity, 0);
+  }
+  void add(int a, int b, int delta) {
+    std::size_t slot = find(key(a, b));
+    if (keys_[slot] == kEmpty) {
+      if (2 * (used_ + 1) > keys_.size()) {
+        grow();
+        slot = find(key(a, b));
+      }
+      keys_[slot] = key(a, b);
+      ++used_;
+    }
+    counts_[slot] = static_cast<std::uint8_t>(counts_[slot] + delta);
+  }
+  bool contains(int a, int b) const {
+    const std::size_t slot = find(key(a, b));
+    return keys_[slot] != kEmpty && counts_[slot] > 0;
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  static std::uint64_t key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  }
+  std::size_t find(std::uint64_t k) const {
+    const std::size_t mask = keys_.size() - 1;
+    std::size_t slot = static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ULL) >> 17) & mask;
+    while (keys_[slot] != kEmpty && keys_[slot] != k) slot = (slot + 1) & mask;
+    return slot;
+  }
+  void grow() {
+    std::vector<std::uint64_t> keys = std::move(keys_);
+    std::vector<std::uint8_t> counts = std::move(counts_);
+    keys_.assign(keys.size() * 2, kEmpty);
+    counts_.assign(keys.size() * 2, 0);
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmpty) {
+        const std::size_t slot = find(keys[i]);
+        keys_[slot] = keys[i];
+        counts_[slot] = counts[i];
+      }
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint8_t> counts_;
+  std::size_t used_ = 0;
+};
+
+struct Candidate {
+  double key;
+  int cell;
+  std::uint32_t stamp;
+  // Smallest key first; ties by cell number, so the order is deterministic.
+  bool operator<(const Candidate& o) const { return key != o.key ? key > o.key : cell > o.cell; }
+};
+
+// Algorithm 5.1 over the cells of a Delaunay complex. D = 2 or 3.
+template <int D>
+class Constrictor {
+ public:
+  Constrictor(const DelaunayComplex<D>& complex, const ConstrictionOptions& options)
+      : dt_(complex),
+        options_(options),
+        cells_(static_cast<int>(complex.cells.rows())),
+        kept_(static_cast<std::size_t>(cells_), 1),
+        stamp_(static_cast<std::size_t>(cells_), 0),
+        on_boundary_(static_cast<std::size_t>(complex.points.rows()), 0),
+        edges_(D == 3 ? static_cast<std::size_t>(complex.points.rows()) * 8 : 0) {}
+
+  Constriction<D> run() {
+    initial_boundary();
+    std::size_t extra = 0;
+    while (!heap_.empty()) {
+      const bool done = boundary_vertices_ == dt_.points.rows();
+      const Candidate top = heap_.top();
+      if (done && !continue_after_all(top.key, extra)) break;
+      heap_.pop();
+      if (!kept_[static_cast<std::size_t>(top.cell)] || stamp_[static_cast<std::size_t>(top.cell)] != top.stamp) continue;
+      if (!removable(top.cell)) continue;  // line 5: deletions elsewhere may have blocked it
+      remove(top.cell);
+      if (done) ++extra;
+      if (options_.progress) options_.progress(static_cast<double>(boundary_vertices_) / static_cast<double>(dt_.points.rows()));
+    }
+    return result();
+  }
+
+ private:
+  bool continue_after_all(double key, std::size_t extra) const {
+    if (extra < options_.extra_removals) return true;
+    return options_.until_indicator && key < *options_.until_indicator;
+  }
+
+  int vertex(int c, int i) const { return dt_.cells(c, i); }
+  bool boundary_face(int c, int i) const {
+    const int n = dt_.neighbors(c, i);
+    return n < 0 || !kept_[static_cast<std::size_t>(n)];
+  }
+
+  void mark_face(int c, int i, int delta) {
+    for (int k = 0; k <= D; ++k) {
+      if (k == i) continue;
+      const int v = vertex(c, k);
+      if (delta > 0 && !on_boundary_[static_cast<std::size_t>(v)]) {
+        on_boundary_[static_cast<std::size_t>(v)] = 1;
+        ++boundary_vertices_;
+      }
+    }
+    if constexpr (D == 3)
+      for (int a = 0; a < 3; ++a) {
+        const int* f = kFace3[i];
+        edges_.add(vertex(c, f[a]), vertex(c, f[(a + 1) % 3]), delta);
+      }
+  }
+
+  // Line 2: the convex hull is the first boundary.
+  void initial_boundary() {
+    for (int c = 0; c < cells_; ++c)
+      for (int i = 0; i <= D; ++i)
+        if (dt_.neighbors(c, i) < 0) mark_face(c, i, +1);
+    for (int c = 0; c < cells_; ++c) consider(c);
+  }
+
+  // Which faces of a kept cell are on the boundary; returns their count.
+  int boundary_faces(int c, int (&faces)[D + 1]) const {
+    int n = 0;
+    for (int i = 0; i <= D; ++i)
+      if (boundary_face(c, i)) faces[n++] = i;
+    return n;
+  }
+
+  bool removable(int c) const {
+    int faces[D + 1];
+    const int n = boundary_faces(c, faces);
+    if (n == 1) return !on_boundary_[static_cast<std::size_t>(vertex(c, faces[0]))];
+    if constexpr (D == 3)
+      if (n == 2) return !edges_.contains(vertex(c, faces[0]), vertex(c, faces[1]));
+    return false;
+  }
+
+  // Lines 7-8: a cell whose boundary changed goes (back) into the heap when
+  // removable, keyed by its γ-indicator (3D, two faces: their sum, §5.3).
+  void consider(int c) {
+    if (!kept_[static_cast<std::size_t>(c)] || !removable(c)) return;
+    int faces[D + 1];
+    const int n = boundary_faces(c, faces);
+    double key = 0.0;
+    for (int k = 0; k < n; ++k) key += gamma_indicator(dt_, c, faces[k]);
+    heap_.push({key, c, stamp_[static_cast<std::size_t>(c)]});
+  }
+
+  // Line 6: the cell leaves the pruned graph; its boundary faces stop being
+  // boundary, its other faces become boundary.
+  void remove(int c) {
+    kept_[static_cast<std::size_t>(c)] = 0;
+    ++removed_;
+    for (int i = 0; i <= D; ++i) {
+      const int n = dt_.neighbors(c, i);
+      if (n < 0 || !kept_[static_cast<std::size_t>(n)]) {
+        mark_face(c, i, -1);
+      } else {
+        mark_face(c, i, +1);
+        ++stamp_[static_cast<std::size_t>(n)];
+      }
+    }
+    for (int i = 0; i <= D; ++i) {
+      const int n = dt_.neighbors(c, i);
+      if (n >= 0 && kept_[static_cast<std::size_t>(n)]) consider(n);
+    }
+  }
+
+  Constriction<D> result() const {
+    Constriction<D> out;
+    std::vector<Eigen::Matrix<int, 1, D>> faces;
+    for (int c = 0; c < cells_; ++c) {
+      if (!kept_[static_cast<std::size_t>(c)]) continue;
+      for (int i = 0; i <= D; ++i) {
+        if (!boundary_face(c, i)) continue;
+        Eigen::Matrix<int, 1, D> f;
+        if constexpr (D == 2) {
+          f << vertex(c, (i + 1) % 3), vertex(c, (i + 2) % 3);
+        } else {
+          f << vertex(c, kFace3[i][0]), vertex(c, kFace3[i][1]), vertex(c, kFace3[i][2]);
+        }
+        faces.push_back(f);
+      }
+    }
+    out.boundary.resize(static_cast<Eigen::Index>(faces.size()), D);
+    for (std::size_t k = 0; k < faces.size(); ++k) out.boundary.row(static_cast<Eigen::Index>(k)) = faces[k];
+    out.kept = kept_;
+    for (Eigen::Index v = 0; v < dt_.points.rows(); ++v)
+      if (!on_boundary_[static_cast<std::size_t>(v)]) out.interior_vertices.push_back(static_cast<int>(v));
+    out.removed_cells = removed_;
+    out.all_on_boundary = out.interior_vertices.empty();
+    return out;
+  }
+
+  const DelaunayComplex<D>& dt_;
+  const ConstrictionOptions& options_;
+  int cells_;
+  std::vector<char> kept_;
+  std::vector<std::uint32_t> stamp_;
+  std::vector<char> on_boundary_;
+  Eigen::Index boundary_vertices_ = 0;
+  EdgeCounter edges_;
+  std::priority_queue<Candidate> heap_;
+  std::size_t removed_ = 0;
+};
+
+}  // namespace
+
+double gamma_indicator(const DelaunayComplex<2>& complex, int cell, int face) {
+  const Eigen::Vector2d l = complex.points.row(complex.cells(cell, face));
+  const Eigen::Vector2d a = complex.points.row(complex.cells(cell, (face + 1) % 3));
+  const Eigen::Vector2d b = complex.points.row(complex.cells(cell, (face + 2) % 3));
+  // Circumcentre relative to l.
+  const Eigen::Vector2d u = a - l, v = b - l;
+  const double d = 2.0 * (u.x() * v.y() - u.y() * v.x());
+  const Eigen::Vector2d centre(v.y() * u.squaredNorm() - u.y() * v.squaredNorm(),
+                               u.x() * v.squaredNorm() - v.x() * u.squaredNorm());
+  const Eigen::Vector2d c = centre / d;  // C − l
+  const double R = c.norm(), r = 0.5 * (b - a).norm();
+  if (!std::isfinite(R) || R == 0.0) return 1.0;
+  const Eigen::Vector2d e = b - a, n(-e.y(), e.x());
+  return signed_magnitude(r / R, n.dot(l - a), n.dot(c + (l - a)));  // Definition 5.1, Eq. (5.1)
+}
+
+double gamma_indicator(const DelaunayComplex<3>& complex, int cell, int face) {
+  const Eigen::Vector3d l = complex.points.row(complex.cells(cell, face));
+  const Eigen::Vector3d a = complex.points.row(complex.cells(cell, kFace3[face][0]));
+  const Eigen::Vector3d b = complex.points.row(complex.cells(cell, kFace3[face][1]));
+  const Eigen::Vector3d c = complex.points.row(complex.cells(cell, kFace3[face][2]));
+  // Circumcentre of the tetrahedron relative to l.
+  const Eigen::Vector3d u = a - l, v = b - l, w = c - l;
+  const double d = 2.0 * u.dot(v.cross(w));
+  const Eigen::Vector3d centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / d;
+  const double R = centre.norm();
+  // Radius of the face's circumcircle: |e1||e2||e1−e2| / (2|e1×e2|).
+  const Eigen::Vector3d e1 = b - a, e2 = c - a, n = e1.cross(e2);
+  const double r = e1.norm() * e2.norm() * (e1 - e2).norm() / (2.0 * n.norm());
+  if (!std::isfinite(R) || !std::isfinite(r) || R == 0.0) return 1.0;
+  return signed_magnitude(r / R, n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.2, Eq. (5.2)
+}
+
+Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options) {
+  return Constrictor<2>(complex, options).run();
+}
+
+Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options) {
+  return Constrictor<3>(complex, options).run();
+}
+
+}  // namespace scanstation

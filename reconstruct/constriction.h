@@ -1,0 +1,60 @@
+// Constriction of the Delaunay triangulation γ([-1,1],[0,1]) into a closed
+// boundary through all points (thesis Chapter 5, Algorithm 5.1).
+#pragma once
+
+#include "core/progress.h"
+#include "reconstruct/delaunay_complex.h"
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace scanstation {
+
+struct ConstrictionOptions {
+  /// Further removals once every point is on the boundary (§5.3: "there is no
+  /// general rule telling how long to continue", e.g. the candlestick).
+  std::size_t extra_removals = 0;
+  /// Once every point is on the boundary, continue while the smallest
+  /// selection key (γ-indicator, or sum of two in 3D) is below this value.
+  std::optional<double> until_indicator;
+  /// Fraction of the points on the boundary so far.
+  ProgressCallback progress;
+};
+
+/// boundary           #B by D: the boundary faces. 2D: directed edges (a, b)
+///                    with the enclosed region on their left (a counter-clockwise
+///                    polygon); 3D: triangles counter-clockwise seen from outside.
+/// kept               per Delaunay cell, 1 when it is still in the pruned graph:
+///                    the cells kept triangulate the enclosed region (§5.8)
+/// interior_vertices  vertices not on the boundary (empty when constriction
+///                    succeeded; else the ones it could not reach, §5.4)
+template <int D>
+struct Constriction {
+  Eigen::Matrix<int, Eigen::Dynamic, D> boundary;
+  std::vector<char> kept;
+  std::vector<int> interior_vertices;
+  std::size_t removed_cells = 0;
+  bool all_on_boundary = false;
+};
+
+/// Removes boundary cells of the Delaunay complex one at a time, always the
+/// removable one with the smallest γ-indicator (Definitions 5.1, 5.2; the
+/// selection rules of §5.2 and §5.3), until every point is on the boundary or
+/// nothing is removable. Removability keeps the boundary a simple polygon /
+/// a closed 2-manifold polyhedron of genus 0: in 2D a triangle with one
+/// boundary edge whose opposite vertex is not yet on the boundary; in 3D a
+/// tetrahedron with one boundary triangle whose opposite vertex is not on the
+/// boundary, or with two boundary triangles whose opposite edge is not.
+Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options = {});
+Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options = {});
+
+/// The γ-indicator of the face of `cell` opposite its local vertex `face`,
+/// with respect to that vertex: ±(1 − r/R), r the radius of the face's
+/// smallest circumscribed circle (sphere), R the cell's circumradius; positive
+/// when the circumcentre lies on the same side of the face as the vertex.
+/// 2D: Definition 5.1; 3D: Definition 5.2.
+double gamma_indicator(const DelaunayComplex<2>& complex, int cell, int face);
+double gamma_indicator(const DelaunayComplex<3>& complex, int cell, int face);
+
+}  // namespace scanstation

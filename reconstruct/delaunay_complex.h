@@ -1,0 +1,31 @@
+// The Delaunay triangulation as plain index arrays: the starting graph
+// γ([-1,1],[0,1]) of constriction (thesis §5.1), which equals the Delaunay
+// triangulation when no k+2 points are co-spherical.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace scanstation {
+
+/// D = 2 (triangles) or 3 (tetrahedra).
+/// points     #P by D coordinates (distinct)
+/// cells      #C by D+1 vertex indices of the finite Delaunay cells, positively
+///            oriented (counter-clockwise in 2D; orientation(v0,v1,v2,v3) > 0 in 3D)
+/// neighbors  #C by D+1: neighbors(c, i) is the cell across the face of c
+///            opposite its vertex i, or −1 across the convex hull
+template <int D>
+struct DelaunayComplex {
+  Eigen::Matrix<double, Eigen::Dynamic, D> points;
+  Eigen::Matrix<int, Eigen::Dynamic, D + 1> cells;
+  Eigen::Matrix<int, Eigen::Dynamic, D + 1> neighbors;
+};
+
+/// Builds the Delaunay triangulation with CGAL (exact predicates; a
+/// consistent symbolic perturbation breaks co-circular / co-spherical ties).
+/// P must hold distinct points (merge duplicates first). Throws InvalidInput
+/// when fewer than D+1 points are given or all lie on a line (2D) or a plane
+/// (3D): then no closed boundary encloses them.
+DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P);
+DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
+
+}  // namespace scanstation

@@ -1,0 +1,1 @@
+#include "reconstruct/gamma_graph.h"

@@ -1,0 +1,1 @@
+#include "reconstruct/geometric_graphs.h"

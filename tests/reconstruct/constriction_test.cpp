@@ -1,0 +1,191 @@
+// Constriction (thesis Chapter 5): invariants on generated and real data.
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh_topology.h"
+#include "core/polygon.h"
+#include "reconstruct/boundary_reconstruction.h"
+#include "sim/random.h"
+#include "sim/shapes.h"
+#include "sim/surface_of_revolution.h"
+#include "test_support.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <numbers>
+#include <set>
+
+namespace scanstation {
+namespace {
+
+double signed_volume(const TriangleMesh& m) {
+  double six = 0.0;
+  for (Eigen::Index f = 0; f < m.face_count(); ++f) {
+    const Eigen::Vector3d a = m.vertices.positions.row(m.faces(f, 0)), b = m.vertices.positions.row(m.faces(f, 1)),
+                          c = m.vertices.positions.row(m.faces(f, 2));
+    six += a.dot(b.cross(c));
+  }
+  return six / 6.0;
+}
+
+// What every constriction result must satisfy, whether or not all points
+// were reached: a closed, oriented 2-manifold of genus 0 whose enclosed
+// volume is that of the kept tetrahedra.
+void expect_valid_surface(const SurfaceReconstruction& r, const std::string& what) {
+  const MeshTopology t = mesh_topology(r.mesh);
+  EXPECT_TRUE(t.closed) << what;
+  EXPECT_TRUE(t.manifold) << what;
+  EXPECT_TRUE(t.oriented) << what;
+  EXPECT_EQ(t.genus, 0) << what;
+  EXPECT_EQ(t.components, 1u) << what;
+  const double volume = signed_volume(r.mesh);
+  EXPECT_GT(volume, 0.0) << what;
+  EXPECT_NEAR(volume, r.statistics.enclosed_measure, 1e-9 * std::abs(volume)) << what;
+  EXPECT_EQ(t.isolated_vertices, r.statistics.interior_vertices.size()) << what;
+}
+
+std::size_t recalled_triangles(const TriangleMesh& truth, const TriangleMesh& result) {
+  std::set<std::array<int, 3>> found;
+  for (Eigen::Index f = 0; f < result.face_count(); ++f) {
+    std::array<int, 3> t{result.faces(f, 0), result.faces(f, 1), result.faces(f, 2)};
+    std::sort(t.begin(), t.end());
+    found.insert(t);
+  }
+  std::size_t hits = 0;
+  for (Eigen::Index f = 0; f < truth.face_count(); ++f) {
+    std::array<int, 3> t{truth.faces(f, 0), truth.faces(f, 1), truth.faces(f, 2)};
+    std::sort(t.begin(), t.end());
+    hits += found.count(t);
+  }
+  return hits;
+}
+
+TEST(Constriction3, GeneratedShapesGiveClosedGenusZeroBoundariesThroughAllPoints) {
+  const std::vector<std::pair<std::string, TriangleMesh>> shapes = {
+      {"ellipsoid", sim::ellipsoid({3.0, 2.0, 1.0}, 3)},
+      {"chalice", sim::surface_of_revolution(sim::chalice_profile(60), 48)},
+      {"icosphere (all co-spherical)", sim::icosphere(3)},
+  };
+  for (const auto& [name, shape] : shapes) {
+    const SurfaceReconstruction r = reconstruct_surface(shape.vertices.positions);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << name << ": " << r.statistics.interior_vertices.size() << " interior";
+    expect_valid_surface(r, name);
+    EXPECT_EQ(r.mesh.face_count(), 2 * shape.vertex_count() - 4) << name;  // Euler: F = 2V − 4
+  }
+}
+
+// Rescaling and moving the input must not change the combinatorial result
+// (the γ-indicator is scale and orientation independent, §5.2).
+// Generic points (jittered off the chalice's co-circular rings), since
+// rounding a scaled degenerate configuration may resolve its ties differently.
+TEST(Constriction3, ResultIsInvariantUnderScaleAndTranslation) {
+  TriangleMesh shape = sim::surface_of_revolution(sim::chalice_profile(40), 24);
+  sim::Random random(3);
+  for (Eigen::Index i = 0; i < shape.vertex_count(); ++i)
+    for (int c = 0; c < 3; ++c) shape.vertices.positions(i, c) += 1e-4 * random.normal();
+  const SurfaceReconstruction base = reconstruct_surface(shape.vertices.positions);
+  expect_valid_surface(base, "jittered chalice");
+  for (const double scale : {1e-6, 1e6}) {
+    Eigen::MatrixX3d moved = shape.vertices.positions * scale;
+    moved.rowwise() += Eigen::RowVector3d(1e3, -2e3, 5e2) * scale;
+    const SurfaceReconstruction r = reconstruct_surface(moved);
+    EXPECT_EQ(recalled_triangles(base.mesh, r.mesh), static_cast<std::size_t>(base.mesh.face_count())) << scale;
+  }
+}
+
+// Random clouds (uniform in a ball: many points deep inside) may lock
+// constriction, but whatever it returns must be a valid boundary.
+TEST(Constriction3, RandomCloudsAlwaysGiveValidBoundaries) {
+  sim::Random random(11);
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Index n = 5 + static_cast<Eigen::Index>(random.below(200));
+    Eigen::MatrixX3d P(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::Vector3d p;
+      do p = Eigen::Vector3d(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1));
+      while (p.norm() > 1.0);
+      P.row(i) = trial % 2 ? Eigen::Vector3d(p.normalized()) : p;  // on the sphere, or inside
+    }
+    expect_valid_surface(reconstruct_surface(P), "trial " + std::to_string(trial));
+  }
+}
+
+TEST(Constriction3, DegenerateInputs) {
+  Eigen::MatrixX3d three(3, 3);
+  three << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  test::expect_error<InvalidInput>([&] { reconstruct_surface(three); }, {"at least 4"});
+  Eigen::MatrixX3d flat(5, 3);
+  flat << 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.3, 0;
+  test::expect_error<InvalidInput>([&] { reconstruct_surface(flat); }, {"plane"});
+  Eigen::MatrixX3d nan = Eigen::MatrixX3d::Random(6, 3);
+  nan(2, 1) = std::nan("");
+  test::expect_error<InvalidInput>([&] { reconstruct_surface(nan); }, {"NaN"});
+  // A cube's corners, each repeated: duplicates merged, co-spherical corners handled.
+  Eigen::MatrixX3d cube(16, 3);
+  for (int i = 0; i < 16; ++i) cube.row(i) << (i >> 0 & 1), (i >> 1 & 1), (i >> 2 & 1);
+  const SurfaceReconstruction r = reconstruct_surface(cube);
+  EXPECT_EQ(r.statistics.duplicates_merged, 8);
+  EXPECT_EQ(r.mesh.vertex_count(), 8);
+  EXPECT_TRUE(r.statistics.all_on_boundary);
+  expect_valid_surface(r, "cube");
+  EXPECT_NEAR(r.statistics.enclosed_measure, 1.0, 1e-12);
+}
+
+// Vertices of real closed genus-0 meshes: the original triangles are a known
+// answer. On these five, plain constriction reaches every vertex (others lock
+// and need the augmentation of §5.4); recall measured at 0.18-0.72 today, far
+// above what a closed surface through the points recovers by chance (~0).
+TEST(Constriction3, RealCgalMeshes) {
+  for (const std::string name : {"cactus", "spool", "hand", "triceratops", "sphere966"}) {
+    const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/" + name + ".off"));
+    const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions);
+    EXPECT_EQ(r.mesh.vertex_count(), truth.vertex_count()) << name;
+    expect_valid_surface(r, name);
+    const double recall = static_cast<double>(recalled_triangles(truth, r.mesh)) / static_cast<double>(truth.face_count());
+    std::printf("%-12s all on boundary: %d (%zu interior), recall %.3f\n", name.c_str(), r.statistics.all_on_boundary,
+                r.statistics.interior_vertices.size(), recall);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << name;
+    EXPECT_GT(recall, 0.15) << name;
+  }
+}
+
+TEST(Constriction2, ChaliceSilhouetteGivesASimplePolygonThroughAllPoints) {
+  // The profile mirrored: a closed silhouette sampled by points.
+  const Eigen::MatrixX2d profile = sim::chalice_profile(80);
+  Eigen::MatrixX2d P(2 * profile.rows() - 2, 2);
+  Eigen::Index n = 0;
+  for (Eigen::Index i = 0; i < profile.rows(); ++i) P.row(n++) << profile(i, 0), profile(i, 1);
+  for (Eigen::Index i = profile.rows() - 2; i >= 1; --i) P.row(n++) << -profile(i, 0), profile(i, 1);
+  const CurveReconstruction r = reconstruct_curve(P);
+  EXPECT_TRUE(r.statistics.all_on_boundary);
+  EXPECT_EQ(r.polygon.size(), P.rows());
+  EXPECT_TRUE(is_simple(r.polygon));
+  EXPECT_GT(twice_signed_area(r.polygon), 0.0);
+  EXPECT_NEAR(twice_signed_area(r.polygon) / 2.0, r.statistics.enclosed_measure, 1e-9);
+}
+
+TEST(Constriction2, RandomPointSetsAlwaysGiveSimplePolygons) {
+  sim::Random random(5);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Eigen::Index n = 3 + static_cast<Eigen::Index>(random.below(100));
+    Eigen::MatrixX2d P(n, 2);
+    for (Eigen::Index i = 0; i < n; ++i) P.row(i) << random.uniform(), random.uniform();
+    const CurveReconstruction r = reconstruct_curve(P);
+    EXPECT_TRUE(is_simple(r.polygon)) << trial;
+    EXPECT_EQ(static_cast<Eigen::Index>(r.order.size() + r.statistics.interior_vertices.size()), n) << trial;
+    EXPECT_NEAR(twice_signed_area(r.polygon) / 2.0, r.statistics.enclosed_measure, 1e-12) << trial;
+  }
+  // Points on a circle: all co-circular, the Delaunay triangulation is degenerate.
+  Eigen::MatrixX2d circle(12, 2);
+  for (int i = 0; i < 12; ++i) circle.row(i) << std::cos(i * std::numbers::pi / 6), std::sin(i * std::numbers::pi / 6);
+  const CurveReconstruction r = reconstruct_curve(circle);
+  EXPECT_TRUE(r.statistics.all_on_boundary);
+  EXPECT_TRUE(is_simple(r.polygon));
+  Eigen::MatrixX2d line(4, 2);
+  line << 0, 0, 1, 1, 2, 2, 3, 3;
+  test::expect_error<InvalidInput>([&] { reconstruct_curve(line); }, {"line"});
+}
+
+}  // namespace
+}  // namespace scanstation
