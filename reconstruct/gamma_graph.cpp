@@ -1,1 +1,664 @@
 #include "reconstruct/gamma_graph.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/unique_points.h"
+
+namespace scanstation {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+constexpr double kPi = 3.14159265358979323846;
+
+// ---------------------------------------------------------------------------
+// GammaTraits: the predicates and constructions of the pencil, per dimension.
+// A simplex is an array of D vertex positions; side A is CGAL's positive side
+// (2D: left of s[0] → s[1]; 3D: where (s1-s0)×(s2-s0) points).
+
+enum class OnPlane { outside, disc, blocked };  // vertex in S's hyperplane
+
+template <int D>
+struct GammaTraits;
+
+template <>
+struct GammaTraits<2> {
+  using Vec = Eigen::Vector2d;
+  using Simplex = std::array<Vec, 2>;
+  static K::Point_2 cg(const Vec& p) { return {p.x(), p.y()}; }
+
+  static bool is_simplex(const Simplex&) { return true; }  // distinct points
+  static void frame(const Simplex& s, Vec& m, Vec& n, double& r) {
+    m = 0.5 * (s[0] + s[1]);
+    const Vec d = s[1] - s[0];
+    r = 0.5 * d.norm();
+    n = Vec(-d.y(), d.x()) / d.norm();
+  }
+  static int side(const Simplex& s, const Vec& p) {
+    return static_cast<int>(CGAL::orientation(cg(s[0]), cg(s[1]), cg(p)));
+  }
+  // +1 outside the smallest ball touching s, 0 on it, -1 inside.
+  static int power_sign(const Simplex& s, const Vec& p) {
+    return -static_cast<int>(CGAL::side_of_bounded_circle(cg(s[0]), cg(s[1]), cg(p)));
+  }
+  static OnPlane on_plane(const Simplex& s, const Vec& p) {
+    return CGAL::collinear_are_strictly_ordered_along_line(cg(s[0]), cg(p), cg(s[1])) ? OnPlane::blocked
+                                                                                        : OnPlane::outside;
+  }
+  // Sign of hi - lo when hi is realised by `a` (side A) and lo by `b` (side B):
+  // b lies inside the ball through s and a exactly when hi < lo.
+  static int tie_sign(const Simplex& s, const Vec& a, const Vec& b) {
+    return static_cast<int>(CGAL::side_of_bounded_circle(cg(s[0]), cg(s[1]), cg(a), cg(b))) * -1;
+  }
+};
+
+template <>
+struct GammaTraits<3> {
+  using Vec = Eigen::Vector3d;
+  using Simplex = std::array<Vec, 3>;
+  static K::Point_3 cg(const Vec& p) { return {p.x(), p.y(), p.z()}; }
+
+  static bool is_simplex(const Simplex& s) { return !CGAL::collinear(cg(s[0]), cg(s[1]), cg(s[2])); }
+  static void frame(const Simplex& s, Vec& m, Vec& n, double& r) {
+    const Vec u = s[1] - s[0], v = s[2] - s[0], w = u.cross(v);
+    m = s[0] + (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u)) / (2.0 * w.squaredNorm());
+    r = (m - s[0]).norm();
+    n = w.normalized();
+  }
+  static int side(const Simplex& s, const Vec& p) {
+    return static_cast<int>(CGAL::orientation(cg(s[0]), cg(s[1]), cg(s[2]), cg(p)));
+  }
+  static int power_sign(const Simplex& s, const Vec& p) {
+    return -static_cast<int>(CGAL::side_of_bounded_sphere(cg(s[0]), cg(s[1]), cg(s[2]), cg(p)));
+  }
+  static OnPlane on_plane(const Simplex& s, const Vec& p) {
+    const auto a = cg(s[0]), b = cg(s[1]), c = cg(s[2]), q = cg(p);
+    if (CGAL::coplanar_orientation(a, b, c, q) == CGAL::POSITIVE &&
+        CGAL::coplanar_orientation(b, c, a, q) == CGAL::POSITIVE &&
+        CGAL::coplanar_orientation(c, a, b, q) == CGAL::POSITIVE)
+      return OnPlane::blocked;
+    return CGAL::coplanar_side_of_bounded_circle(a, b, c, q) == CGAL::ON_BOUNDED_SIDE ? OnPlane::disc
+                                                                                      : OnPlane::outside;
+  }
+  static int tie_sign(const Simplex& s, const Vec& a, const Vec& b) {
+    return -static_cast<int>(CGAL::side_of_bounded_sphere(cg(s[0]), cg(s[1]), cg(s[2]), cg(a), cg(b)));
+  }
+};
+
+// ---------------------------------------------------------------------------
+// The pencil profile of one simplex (see the header).
+
+struct Profile {
+  double lo = -1, hi = 1;
+  int arg_lo = -1, arg_hi = -1;  // vertices realising lo / hi
+  bool blocked = false;          // a vertex in the open simplex
+  bool disc = false;             // 3D: a coplanar vertex inside the circumcircle
+};
+
+template <int D>
+struct Pencil {
+  using T = GammaTraits<D>;
+  using Vec = typename T::Vec;
+  typename T::Simplex s;
+  Vec m, n;
+  double r = 0;
+
+  explicit Pencil(const typename T::Simplex& simplex) : s(simplex) { T::frame(s, m, n, r); }
+
+  // t_p of a vertex strictly on side `side`: sign exact, magnitude a double
+  // kept inside (0,1) so that the half-spaces t = ±1 stay exact.
+  double t_value(const Vec& p, int side) const {
+    const int pw = T::power_sign(s, p);
+    if (pw == 0) return 0.0;
+    const Vec d = p - s[0];
+    const double power = std::abs(d.squaredNorm() + 2.0 * d.dot(s[0] - m));  // | |p-m|² - r² |
+    const double h = std::abs((p - m).dot(n));
+    const double u = power / (2.0 * h * r);  // centre offset / r; inf when h == 0
+    double mag = u < 1.0 ? u * u / (std::sqrt(1.0 + u * u) * (std::sqrt(1.0 + u * u) + 1.0))
+                         : 1.0 - 1.0 / std::sqrt(1.0 + u * u);  // = 1 - r/R
+    if (!(mag == mag)) mag = 1.0;
+    mag = std::clamp(mag, std::numeric_limits<double>::denorm_min(), std::nextafter(1.0, 0.0));
+    return side * pw * mag;
+  }
+
+  // Adds one vertex (index i, not a vertex of s) to the profile.
+  void add(Profile& pr, int i, const Vec& p) const {
+    const int sd = T::side(s, p);
+    if (sd == 0) {
+      const OnPlane where = T::on_plane(s, p);
+      pr.blocked |= where == OnPlane::blocked;
+      pr.disc |= where == OnPlane::disc;
+      return;
+    }
+    const double t = t_value(p, sd);
+    if (sd > 0 && (pr.arg_hi < 0 || t < pr.hi)) pr.hi = t, pr.arg_hi = i;
+    if (sd < 0 && (pr.arg_lo < 0 || t > pr.lo)) pr.lo = t, pr.arg_lo = i;
+  }
+
+  // Makes sign(hi - lo) exact: equality means co-spherical vertices on both
+  // sides (one empty ball), which decides whether c'1 is ≥ 0.
+  void finish(Profile& pr, const std::vector<Vec>& P) const {
+    if (pr.arg_hi < 0 || pr.arg_lo < 0) return;
+    const int sg = T::tie_sign(s, P[pr.arg_hi], P[pr.arg_lo]);
+    if (sg == 0) pr.lo = pr.hi;
+    if (sg > 0 && !(pr.hi > pr.lo)) pr.lo = std::nextafter(pr.hi, -2.0);
+    if (sg < 0 && !(pr.hi < pr.lo)) pr.lo = std::nextafter(pr.hi, 2.0);
+  }
+};
+
+// (c'0, c'1) of Definition 3.3 under the reading documented in the header.
+std::optional<Eigen::Vector2d> largest_empty(const Profile& pr) {
+  if (pr.blocked) return std::nullopt;
+  const double a = pr.hi, b = -pr.lo;
+  if (pr.disc) {  // only half-spaces avoid a coplanar in-circle vertex
+    if (a == 1 && b == 1) return Eigen::Vector2d(1, 1);
+    if (a == 1 || b == 1) return Eigen::Vector2d(-1, 1);
+    return Eigen::Vector2d(std::max(a, b), -1);
+  }
+  if (pr.hi >= pr.lo) return Eigen::Vector2d(std::min(a, b), std::max(a, b));
+  return Eigen::Vector2d(std::max(a, b), std::min(a, b));
+}
+
+// Definition 3.1 on the profile: t1 = c1, t0 = -c0 or the mirror image.
+bool neighborhood_empty(const Profile& pr, double c0, double c1) {
+  if (pr.blocked) return false;
+  const auto empty = [&](double t0, double t1) {
+    const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+    const bool half0 = std::abs(t0) == 1, half1 = std::abs(t1) == 1;
+    if (c1 >= 0) return !(pr.disc && !(half0 && half1)) && pr.lo <= lo && hi <= pr.hi;  // B0 ∪ B1
+    return !(pr.disc && !half0 && !half1) && lo <= pr.hi && pr.lo <= hi;               // B0 ∩ B1
+  };
+  return empty(-c0, c1) || empty(c0, -c1);
+}
+
+// ---------------------------------------------------------------------------
+// Input: finite, de-duplicated points.
+
+template <int D>
+struct Input {
+  std::vector<typename GammaTraits<D>::Vec> P;  // distinct positions
+  std::vector<int> id;                          // row of P[u] in the caller's V
+};
+
+template <int D>
+Input<D> prepare(const Eigen::Matrix<double, Eigen::Dynamic, D>& V) {
+  if (!V.allFinite()) throw InvalidInput("gamma graph: the point set holds a non-finite coordinate");
+  Eigen::MatrixX3d V3 = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  V3.leftCols(D) = V;
+  std::vector<Eigen::Index> first, map;
+  unique_points(V3, first, map);
+  Input<D> in;
+  for (Eigen::Index f : first) {
+    in.P.push_back(V.row(f).transpose());
+    in.id.push_back(static_cast<int>(f));
+  }
+  return in;
+}
+
+void check_parameter(double c, const char* name) {
+  if (!(c >= -1 && c <= 1))
+    throw InvalidInput(std::string("gamma graph: parameter ") + name + " = " + std::to_string(c) +
+                       " lies outside [-1, 1]");
+}
+
+template <int D>
+using Index = std::array<int, D>;
+
+template <int D>
+struct Candidate {
+  Index<D> s;  // ascending indices into Input::P
+  Profile profile;
+};
+
+template <int D>
+typename GammaTraits<D>::Simplex positions(const Input<D>& in, const std::type_identity_t<Index<D>>& s) {
+  typename GammaTraits<D>::Simplex x;
+  for (int i = 0; i < D; ++i) x[i] = in.P[s[i]];
+  return x;
+}
+
+// Profile of s against every vertex: O(N). Used for degenerate clusters.
+template <int D>
+Profile scan_profile(const Input<D>& in, const std::type_identity_t<Index<D>>& s) {
+  const Pencil<D> pencil(positions(in, s));
+  Profile pr;
+  for (int i = 0; i < static_cast<int>(in.P.size()); ++i)
+    if (std::find(s.begin(), s.end(), i) == s.end()) pencil.add(pr, i, in.P[i]);
+  pencil.finish(pr, in.P);
+  return pr;
+}
+
+// Profile of a Delaunay simplex from its opposite vertices (Theorem 3.2).
+template <int D>
+Profile delaunay_profile(const Input<D>& in, const std::type_identity_t<Index<D>>& s, std::initializer_list<int> opposite) {
+  const Pencil<D> pencil(positions(in, s));
+  Profile pr;
+  for (int v : opposite)
+    if (v >= 0) pencil.add(pr, v, in.P[v]);
+  pencil.finish(pr, in.P);
+  return pr;
+}
+
+template <int D>
+Index<D> sorted(Index<D> s) {
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+// Union-find over cell numbers, for clusters of co-spherical cells.
+struct Clusters {
+  std::vector<int> parent;
+  int add() {
+    parent.push_back(static_cast<int>(parent.size()));
+    return parent.back();
+  }
+  int find(int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); }
+  void join(int a, int b) { parent[find(a)] = find(b); }
+};
+
+// All k-subsets of each cluster's vertex set that are not Delaunay simplices,
+// with an O(N) profile each (degenerate input only).
+template <int D>
+void add_cluster_subsets(const Input<D>& in, const std::map<int, std::set<int>>& groups,
+                         std::set<Index<D>>& seen, std::vector<Candidate<D>>& out) {
+  for (const auto& [root, vs] : groups) {
+    if (static_cast<int>(vs.size()) <= D + 1) continue;
+    const std::vector<int> v(vs.begin(), vs.end());
+    std::vector<int> pick(D);
+    std::function<void(int, int)> rec = [&](int from, int depth) {
+      if (depth == D) {
+        Index<D> s;
+        std::copy(pick.begin(), pick.end(), s.begin());
+        if (!GammaTraits<D>::is_simplex(positions(in, s)) || !seen.insert(s).second) return;
+        out.push_back({s, scan_profile(in, s)});
+        return;
+      }
+      for (int i = from; i < static_cast<int>(v.size()); ++i) pick[depth] = v[i], rec(i + 1, depth + 1);
+    };
+    rec(0, 0);
+  }
+}
+
+// Every simplex with an empty touching ball (c'1 ≥ 0), 2D.
+std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+  std::vector<std::pair<K::Point_2, int>> pts;
+  for (int i = 0; i < static_cast<int>(in.P.size()); ++i) pts.emplace_back(GammaTraits<2>::cg(in.P[i]), i);
+  DT dt(pts.begin(), pts.end());
+  std::vector<Candidate<2>> out;
+  if (dt.dimension() < 2) {  // collinear: consecutive points along the line
+    std::vector<int> order(in.P.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return std::make_pair(in.P[a].x(), in.P[a].y()) < std::make_pair(in.P[b].x(), in.P[b].y());
+    });
+    for (std::size_t i = 1; i < order.size(); ++i) {
+      const Index<2> s = sorted<2>({order[i - 1], order[i]});
+      out.push_back({s, scan_profile(in, s)});
+    }
+    return out;
+  }
+  std::set<Index<2>> seen;
+  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+    const auto f = e->first;
+    const int i = e->second;
+    const Index<2> s = sorted<2>({f->vertex(DT::cw(i))->info(), f->vertex(DT::ccw(i))->info()});
+    const auto opp = f->vertex(i), mir = dt.mirror_vertex(f, i);
+    out.push_back({s, delaunay_profile(in, s, {dt.is_infinite(opp) ? -1 : opp->info(),
+                                               dt.is_infinite(mir) ? -1 : mir->info()})});
+    seen.insert(s);
+  }
+  // Co-circular clusters: every chord of an empty circle has an empty disc.
+  Clusters uf;
+  std::map<DT::Face_handle, int> number;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) number[f] = uf.add();
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const auto g = f->neighbor(i);
+      if (dt.is_infinite(g)) continue;
+      const auto v = dt.mirror_vertex(f, i);
+      if (CGAL::side_of_oriented_circle(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(),
+                                        v->point()) == CGAL::ON_ORIENTED_BOUNDARY)
+        uf.join(number[f], number[g]);
+    }
+  std::map<int, std::set<int>> groups;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+    for (int i = 0; i < 3; ++i) groups[uf.find(number[f])].insert(f->vertex(i)->info());
+  add_cluster_subsets<2>(in, groups, seen, out);
+  return out;
+}
+
+// Every simplex with an empty touching ball (c'1 ≥ 0), 3D.
+std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_3<Vb>;
+  using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+  std::vector<std::pair<K::Point_3, int>> pts;
+  for (int i = 0; i < static_cast<int>(in.P.size()); ++i) pts.emplace_back(GammaTraits<3>::cg(in.P[i]), i);
+  DT dt(pts.begin(), pts.end());
+  std::vector<Candidate<3>> out;
+  std::set<Index<3>> seen;
+  if (dt.dimension() < 3) {  // coplanar input: every triple, O(N^4)
+    if (in.P.size() > 200)
+      throw InvalidInput("gamma graph: 3D input is coplanar (" + std::to_string(in.P.size()) +
+                         " points); its graph has Θ(N³) triangles, use the 2D graph instead (limit 200 points)");
+    const int n = static_cast<int>(in.P.size());
+    for (int a = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b)
+        for (int c = b + 1; c < n; ++c) {
+          const Index<3> s{a, b, c};
+          if (GammaTraits<3>::is_simplex(positions(in, s))) out.push_back({s, scan_profile(in, s)});
+        }
+    return out;
+  }
+  for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
+    const auto c = f->first;
+    const int i = f->second;
+    Index<3> s;
+    for (int j = 0, k = 0; j < 4; ++j)
+      if (j != i) s[k++] = c->vertex(j)->info();
+    s = sorted<3>(s);
+    const auto opp = c->vertex(i), mir = dt.mirror_vertex(c, i);
+    out.push_back({s, delaunay_profile(in, s, {dt.is_infinite(opp) ? -1 : opp->info(),
+                                               dt.is_infinite(mir) ? -1 : mir->info()})});
+    seen.insert(s);
+  }
+  // Clusters: finite cells on one empty sphere; hull facets in one plane.
+  Clusters uf;
+  std::map<DT::Cell_handle, int> number;
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) number[c] = uf.add();
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
+    for (int i = 0; i < 4; ++i) {
+      const auto g = c->neighbor(i);
+      const auto v = dt.mirror_vertex(c, i);
+      if (dt.is_infinite(c) != dt.is_infinite(g) || dt.is_infinite(v) || c->vertex(i) == dt.infinite_vertex())
+        continue;
+      std::array<K::Point_3, 4> p;
+      int k = 0;
+      for (int j = 0; j < 4; ++j)
+        if (!dt.is_infinite(c->vertex(j))) p[k++] = c->vertex(j)->point();
+      const bool same = dt.is_infinite(c) ? CGAL::orientation(p[0], p[1], p[2], v->point()) == CGAL::COPLANAR
+                                          : CGAL::side_of_oriented_sphere(p[0], p[1], p[2], p[3], v->point()) ==
+                                                CGAL::ON_ORIENTED_BOUNDARY;
+      if (same) uf.join(number[c], number[g]);
+    }
+  std::map<int, std::set<int>> groups;
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
+    for (int i = 0; i < 4; ++i)
+      if (!dt.is_infinite(c->vertex(i))) groups[uf.find(number[c])].insert(c->vertex(i)->info());
+  // A coplanar hull group of 4 points has two facets but only 4 vertices.
+  for (auto& [root, vs] : groups)
+    if (vs.size() == 4) {
+      std::vector<int> v(vs.begin(), vs.end());
+      for (int skip = 0; skip < 4; ++skip) {
+        Index<3> s;
+        for (int j = 0, k = 0; j < 4; ++j)
+          if (j != skip) s[k++] = v[j];
+        if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
+          out.push_back({s, scan_profile(in, s)});
+      }
+    }
+  add_cluster_subsets<3>(in, groups, seen, out);
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// Static k-d tree over the distinct points: ball queries with early exit.
+
+template <int D>
+class KdTree {
+ public:
+  using Vec = typename GammaTraits<D>::Vec;
+  explicit KdTree(const std::vector<Vec>& P) : P_(P), order_(P.size()) {
+    std::iota(order_.begin(), order_.end(), 0);
+    if (!order_.empty()) build(0, static_cast<int>(order_.size()), 0);
+  }
+  // Calls visit(i) for every point with |P[i] - c| ≤ radius, nearest subtrees
+  // first; stops when visit returns false.
+  void visit_ball(const Vec& c, double radius, const std::function<bool(int)>& visit) const {
+    if (!order_.empty()) walk(0, static_cast<int>(order_.size()), 0, c, radius * radius, radius, visit);
+  }
+
+ private:
+  void build(int lo, int hi, int depth) {
+    if (hi - lo <= 8) return;
+    const int axis = depth % D, mid = (lo + hi) / 2;
+    std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi,
+                     [&](int a, int b) { return P_[a][axis] < P_[b][axis]; });
+    build(lo, mid, depth + 1);
+    build(mid + 1, hi, depth + 1);
+  }
+  bool walk(int lo, int hi, int depth, const Vec& c, double r2, double r,
+            const std::function<bool(int)>& visit) const {
+    if (hi - lo <= 8) {
+      for (int k = lo; k < hi; ++k)
+        if ((P_[order_[k]] - c).squaredNorm() <= r2 && !visit(order_[k])) return false;
+      return true;
+    }
+    const int axis = depth % D, mid = (lo + hi) / 2, m = order_[mid];
+    const double split = P_[m][axis], d = c[axis] - split;
+    if ((P_[m] - c).squaredNorm() <= r2 && !visit(m)) return false;
+    const bool left_first = d < 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      const bool left = (pass == 0) == left_first;
+      if (pass == 1 && std::abs(d) > r) break;
+      if (!(left ? walk(lo, mid, depth + 1, c, r2, r, visit) : walk(mid + 1, hi, depth + 1, c, r2, r, visit)))
+        return false;
+    }
+    return true;
+  }
+  const std::vector<Vec>& P_;
+  std::vector<int> order_;
+};
+
+// Profile of s restricted to the ball holding both balls of N_γ(floor,floor);
+// nullopt as soon as a vertex lies in that lens (then c'1 < floor).
+template <int D>
+std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree, const std::type_identity_t<Index<D>>& s, double floor) {
+  const Pencil<D> pencil(positions(in, s));
+  if (!GammaTraits<D>::is_simplex(pencil.s)) return std::nullopt;
+  const double f = std::abs(floor);
+  const double R = pencil.r / (1.0 - f), offset = std::sqrt(std::max(0.0, R * R - pencil.r * pencil.r));
+  const double reach = f >= 1 ? std::numeric_limits<double>::infinity() : (R + offset) * (1 + 1e-9);
+  Profile pr;
+  bool in_lens = false;
+  tree.visit_ball(pencil.m, reach, [&](int i) {
+    if (std::find(s.begin(), s.end(), i) != s.end()) return true;
+    pencil.add(pr, i, in.P[i]);
+    in_lens = pr.blocked || (pr.disc && f < 1) || pr.hi < floor || pr.lo > -floor;
+    return !in_lens;
+  });
+  if (in_lens) return std::nullopt;
+  pencil.finish(pr, in.P);
+  return pr;
+}
+
+// Yao-cone screen (2D): pair (a,b) survives unless a vertex q sits in the
+// cone of a→b (width ≤ 0.45·α) at distance ≤ |ab|/3.3. Then, with ψ the
+// angle qab ≤ α/2 and |aq| ≤ |ab|/3, angle aqb > π - α, i.e. q lies in the
+// lens N_γ(floor,floor) = {p : angle apb > π - α}, α = asin(1-|floor|).
+std::vector<Index<2>> screened_pairs(const Input<2>& in, double floor) {
+  const int n = static_cast<int>(in.P.size());
+  const double alpha = std::asin(1.0 - std::abs(floor));
+  const int cones = static_cast<int>(std::ceil(2 * kPi / (0.45 * alpha)));
+  std::vector<Index<2>> out;
+  if (!(alpha > 0) || cones > 512) {
+    for (int a = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b) out.push_back({a, b});
+    return out;
+  }
+  const double width = 2 * kPi / cones;
+  const auto cone = [&](int a, int b) {
+    const Eigen::Vector2d d = in.P[b] - in.P[a];
+    return std::min(cones - 1, static_cast<int>((std::atan2(d.y(), d.x()) + kPi) / width));
+  };
+  std::vector<double> near(static_cast<std::size_t>(n) * cones, std::numeric_limits<double>::infinity());
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      if (a != b) {
+        double& d = near[static_cast<std::size_t>(a) * cones + cone(a, b)];
+        d = std::min(d, (in.P[b] - in.P[a]).squaredNorm());
+      }
+  const double factor = 3.3 * 3.3;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const double len2 = (in.P[b] - in.P[a]).squaredNorm();
+      if (len2 >= factor * near[static_cast<std::size_t>(a) * cones + cone(a, b)]) continue;
+      if (len2 >= factor * near[static_cast<std::size_t>(b) * cones + cone(b, a)]) continue;
+      out.push_back({a, b});
+    }
+  return out;
+}
+
+std::vector<Index<3>> screened_pairs_or_triples(const Input<3>& in, double) {
+  const int n = static_cast<int>(in.P.size());
+  std::vector<Index<3>> out;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c) out.push_back({a, b, c});
+  return out;
+}
+std::vector<Index<2>> screened_pairs_or_triples(const Input<2>& in, double floor) {
+  return screened_pairs(in, floor);
+}
+
+// All simplices with c'1 ≥ floor and their profiles (exact for c'1 < 0 when
+// they come from the lens path: see gamma_values in the header).
+template <int D>
+std::vector<Candidate<D>> candidates(const Input<D>& in, double floor) {
+  std::vector<Candidate<D>> out;
+  if (static_cast<int>(in.P.size()) < D) return out;
+  for (auto& c : empty_ball_simplices(in)) {
+    const auto cp = largest_empty(c.profile);
+    if (cp && (*cp)[1] >= floor) out.push_back(c);
+  }
+  if (floor >= 0) return out;
+  const KdTree<D> tree(in.P);
+  const auto screened = screened_pairs_or_triples(in, floor);
+  for (const Index<D>& s : screened) {
+    const auto pr = lens_profile<D>(in, tree, s, floor);
+    if (!pr) continue;
+    const auto cp = largest_empty(*pr);
+    if (cp && (*cp)[1] < 0 && (*cp)[1] >= floor) out.push_back({s, *pr});
+  }
+  return out;
+}
+
+// Rows of caller indices, ascending within a row, rows sorted.
+template <int D>
+Eigen::Matrix<int, Eigen::Dynamic, D> to_matrix(const Input<D>& in, std::vector<std::type_identity_t<Index<D>>> rows) {
+  for (auto& r : rows)
+    for (int& v : r) v = in.id[v];
+  std::sort(rows.begin(), rows.end());
+  Eigen::Matrix<int, Eigen::Dynamic, D> M(rows.size(), D);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (int j = 0; j < D; ++j) M(static_cast<Eigen::Index>(i), j) = rows[i][j];
+  return M;
+}
+
+template <int D>
+Eigen::Matrix<int, Eigen::Dynamic, D> fixed_graph(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, double c0,
+                                                   double c1) {
+  check_parameter(c0, "c0");
+  check_parameter(c1, "c1");
+  if (std::abs(c0) > std::abs(c1))
+    throw InvalidInput("gamma graph: γ(c0,c1) needs |c0| ≤ |c1| (Definition 3.1), got c0 = " + std::to_string(c0) +
+                       ", c1 = " + std::to_string(c1));
+  const Input<D> in = prepare<D>(V);
+  std::vector<Index<D>> rows;
+  for (const auto& c : candidates(in, std::min(c1, 0.0)))
+    if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);
+  return to_matrix(in, rows);
+}
+
+template <int D>
+Eigen::Matrix<int, Eigen::Dynamic, D> range_graph(const Eigen::Matrix<double, Eigen::Dynamic, D>& V,
+                                                   const GammaRange& g) {
+  check_parameter(g.c0, "c0");
+  check_parameter(g.c1, "c1");
+  check_parameter(g.c2, "c2");
+  check_parameter(g.c3, "c3");
+  if (g.c0 > g.c1 || g.c2 > g.c3) throw InvalidInput("gamma graph: empty parameter interval (need c0 ≤ c1, c2 ≤ c3)");
+  const Input<D> in = prepare<D>(V);
+  std::vector<Index<D>> rows;
+  for (const auto& c : candidates(in, std::min(g.c2, 0.0))) {
+    const auto cp = largest_empty(c.profile);
+    if (cp && (*cp)[0] >= g.c0 && (*cp)[0] <= g.c1 && (*cp)[1] >= g.c2 && (*cp)[1] <= g.c3) rows.push_back(c.s);
+  }
+  return to_matrix(in, rows);
+}
+
+template <int D>
+void values(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, double floor, Eigen::Matrix<int, Eigen::Dynamic, D>& S,
+            Eigen::MatrixX2d& C) {
+  check_parameter(floor, "floor");
+  const Input<D> in = prepare<D>(V);
+  std::vector<std::pair<Index<D>, Eigen::Vector2d>> rows;
+  for (const auto& c : candidates(in, floor)) {
+    Index<D> s = c.s;
+    for (int& v : s) v = in.id[v];
+    rows.emplace_back(s, *largest_empty(c.profile));
+  }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  S.resize(static_cast<Eigen::Index>(rows.size()), D);
+  C.resize(static_cast<Eigen::Index>(rows.size()), 2);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (int j = 0; j < D; ++j) S(static_cast<Eigen::Index>(i), j) = rows[i].first[j];
+    C.row(static_cast<Eigen::Index>(i)) = rows[i].second.transpose();
+  }
+}
+
+}  // namespace
+
+Eigen::MatrixX2i gamma_graph(const Eigen::MatrixX2d& V, double c0, double c1) { return fixed_graph<2>(V, c0, c1); }
+Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, double c0, double c1) { return fixed_graph<3>(V, c0, c1); }
+Eigen::MatrixX2i gamma_graph(const Eigen::MatrixX2d& V, const GammaRange& range) { return range_graph<2>(V, range); }
+Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range) { return range_graph<3>(V, range); }
+
+void gamma_values(const Eigen::MatrixX2d& V, double floor, Eigen::MatrixX2i& S, Eigen::MatrixX2d& C) {
+  values<2>(V, floor, S, C);
+}
+void gamma_values(const Eigen::MatrixX3d& V, double floor, Eigen::MatrixX3i& S, Eigen::MatrixX2d& C) {
+  values<3>(V, floor, S, C);
+}
+
+void gamma_pencil_bounds(const Eigen::MatrixX2d& V, Eigen::MatrixX2i& E, Eigen::MatrixX2d& LH) {
+  const Input<2> in = prepare<2>(V);
+  std::vector<std::pair<Index<2>, Eigen::Vector2d>> rows;
+  if (in.P.size() >= 2)
+    for (const auto& c : empty_ball_simplices(in)) {
+      const auto cp = largest_empty(c.profile);
+      if (!cp || (*cp)[1] < 0) continue;
+      rows.push_back({{in.id[c.s[0]], in.id[c.s[1]]}, Eigen::Vector2d(c.profile.lo, c.profile.hi)});
+    }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  E.resize(static_cast<Eigen::Index>(rows.size()), 2);
+  LH.resize(static_cast<Eigen::Index>(rows.size()), 2);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    E.row(static_cast<Eigen::Index>(i)) << rows[i].first[0], rows[i].first[1];
+    LH.row(static_cast<Eigen::Index>(i)) = rows[i].second.transpose();
+  }
+}
+
+}  // namespace scanstation

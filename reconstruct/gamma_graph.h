@@ -1,1 +1,104 @@
+// The γ-neighborhood graph (Veltkamp, chapter 3) in 2D (edges) and 3D
+// (triangles): γ(c0,c1) of Definitions 3.1/3.2 and γ([c0,c1],[c2,c3]) of
+// Definition 3.3, for the full parameter range including c1 < 0.
+//
+// The pencil. The balls touching a simplex S (k vertices in kD) form a pencil
+// parametrised by t ∈ [-1,1]: radius r(S)/(1-|t|), centre on the positive side
+// A of S's hyperplane for t > 0, on side B for t < 0, t = ±1 the open
+// half-spaces. A vertex p strictly on side A lies inside ball(t) iff t > t_p
+// (t_p: the parameter of the ball through S and p); p on side B iff t < t_p.
+// So every simplex has two numbers
+//   hi = min t_p over side-A vertices (1 if none),
+//   lo = max t_p over side-B vertices (-1 if none),
+// and N_γ(c0,c1) is empty iff (t1 = c1, t0 = -c0, or the mirror -t0, -t1)
+//   c1 ≥ 0 (union of balls):      lo ≤ min(t0,t1) and max(t0,t1) ≤ hi,
+//   c1 < 0 (intersection, lens):  lo ≤ max(t0,t1) and min(t0,t1) ≤ hi.
+// A vertex in the open simplex (interior of R) puts S in no graph. In 3D a
+// vertex in S's plane strictly inside S's circumcircle but not in the open
+// triangle lies in every finite ball of the pencil but in no half-space.
+//
+// Reading of Definition 3.3 ("the largest values c'0, c'1 such that N_γ is
+// empty"). With a = hi (how far the ball may grow towards side A) and
+// b = -lo (towards side B), the set of empty (c0,c1), |c0| ≤ |c1|, is
+//   {c0 ≤ b, c1 ≤ a} ∪ {c0 ≤ a, c1 ≤ b},
+// for both signs of c1 (Figures 3.8/3.9). We take c'1 = the largest c1 for
+// which some N_γ(·,c1) is empty and c'0 = the largest c0 with N_γ(c0,c'1)
+// empty; in closed form {c'0,c'1} = {a,b} ordered so that |c'0| ≤ |c'1|
+// (c'1 ≥ 0 on a tie). With this reading Lemma 3.1 (c1 ≥ 0) and Lemma 3.2
+// (c1 < 0: γ([c0,1],[c1,1]) ∪ γ([c1,1],[|c0|,1])) hold exactly, and c'1 ≥ 0
+// iff S has an empty touching ball, i.e. γ([-1,1],[0,1]) is the Delaunay
+// triangulation (all simplices on a common empty sphere when degenerate).
+// Exception: in 3D a vertex coplanar with S inside its circumcircle (a
+// degenerate, coplanar 4-tuple) leaves only half-spaces: then c' = (1,1) if
+// both half-spaces are empty, (-1,1) if one is, else (max(a,b), -1); the
+// fixed-parameter γ(c0,c1) is always evaluated from Definition 3.1 itself.
+//
+// Exactness. Side of the hyperplane, on-simplex tests, in-circumcircle and
+// the sign of t_p (inside the smallest ball or not) are exact predicates, so
+// the parameters -1, 0, 1 (half-spaces, smallest balls: CH, Gabriel, DT) are
+// decided exactly, and ties lo = hi (co-spherical vertices on both sides) are
+// detected exactly. |t_p| is a double construction: a vertex whose ball
+// parameter is within rounding of a requested parameter is decided by doubles.
+//
+// Input. Duplicate positions (bit for bit) are merged: the first occurrence
+// takes part, later copies are isolated vertices in no simplex. k vertices on
+// a (k-2)-plane (collinear triples in 3D) are no simplex (Definition 3.1).
+// Fewer than k distinct points give an empty graph. Non-finite coordinates
+// and parameters outside [-1,1] throw scanstation::InvalidInput.
 #pragma once
+
+#include <Eigen/Core>
+
+namespace scanstation {
+
+/// Parameter intervals of γ([c0,c1],[c2,c3]) (Definition 3.3); each in
+/// [-1,1] with c0 ≤ c1 and c2 ≤ c3. Default: γ([-1,1],[0,1]) = Delaunay.
+struct GammaRange {
+  double c0 = -1, c1 = 1, c2 = 0, c3 = 1;
+};
+
+/// γ(c0,c1) (Definitions 3.1, 3.2), |c0| ≤ |c1|, both in [-1,1].
+/// V  #V by 2 positions           → E  #E by 2 edges, i < j, sorted rows
+/// V  #V by 3 positions           → T  #T by 3 triangles, i < j < k, sorted
+/// Cost: c1 ≥ 0: one Delaunay triangulation, O(1) per Delaunay simplex
+/// (Theorem 3.2). c1 < 0: see gamma_values.
+Eigen::MatrixX2i gamma_graph(const Eigen::MatrixX2d& V, double c0, double c1);
+Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, double c0, double c1);
+
+/// γ([c0,c1],[c2,c3]) (Definition 3.3), output as for the fixed form.
+Eigen::MatrixX2i gamma_graph(const Eigen::MatrixX2d& V, const GammaRange& range);
+Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range);
+
+/// Every simplex whose largest empty c'1 is ≥ floor, with its (c'0, c'1).
+/// V      #V by 2 (or 3) positions
+/// floor  in [-1,1]
+/// S      (output) #S by 2 (or 3) vertex indices, ascending in each row,
+///        rows sorted
+/// C      (output) #S by 2: c'0, c'1 of each row of S
+/// Algorithm. floor ≥ 0: Delaunay triangulation (CGAL, Epick); lo and hi of
+/// a Delaunay simplex come from the vertices opposite it in its ≤ 2 incident
+/// cells, O(1) each (Theorem 3.2); co-spherical clusters of cells (and, in
+/// 3D, coplanar hull facets) add all their k-subsets, scanned in O(N) each
+/// (degenerate input only). Total O(N log N) (2D) / O(size of DT) (3D) for
+/// non-degenerate input.
+/// floor < 0: additionally the simplices with no empty ball but an empty
+/// symmetric lens N_γ(floor,floor) (c'1 < 0 needs that, Lemma 3.3). 2D:
+/// every pair is screened by a Yao-cone test (a vertex q within 0.45·α of the
+/// direction a→b and closer than |ab|/3.3 lies in the lens, α = asin(1-|floor|)),
+/// O(N²·1) cheap work; survivors, and in 3D every non-collinear triple
+/// (O(N³)), get an exact k-d tree query of the ball that holds both lens
+/// balls, which finds the whole profile when c'1 < 0. Worst case
+/// O(N^k · m) with m the vertices in that ball: at floor = -1 the lens is the
+/// open simplex and this degrades to the O(N^{k+1}) brute force, whose
+/// output is then Θ(N^k) anyway.
+void gamma_values(const Eigen::MatrixX2d& V, double floor, Eigen::MatrixX2i& S, Eigen::MatrixX2d& C);
+void gamma_values(const Eigen::MatrixX3d& V, double floor, Eigen::MatrixX3i& S, Eigen::MatrixX2d& C);
+
+/// The pencil bounds of every 2D simplex having an empty touching disc
+/// (c'1 ≥ 0; the Delaunay edges plus co-circular chords).
+/// E   (output) #E by 2 edges, i < j, sorted
+/// LH  (output) #E by 2: lo, hi of each edge; side A is the left of i → j
+/// Used by the chapter-2 graphs (Gabriel, α-shape, β_c-skeleton).
+void gamma_pencil_bounds(const Eigen::MatrixX2d& V, Eigen::MatrixX2i& E, Eigen::MatrixX2d& LH);
+
+}  // namespace scanstation

@@ -42,7 +42,7 @@ TEST(Cli, VersionHelpAndUsageErrors) {
   EXPECT_THAT(r.out, testing::HasSubstr("scanstation "));
   r = scanstation("--help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* sub : {"convert", "info", "demo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
+  for (const char* sub : {"convert", "info", "reconstruct", "demo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
   for (const char* sub : {"convert", "info", "demo"}) {
     r = scanstation(std::string(sub) + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub;
@@ -158,18 +158,51 @@ TEST(Cli, PolygonConversionToSvgAndBack) {
   EXPECT_EQ(slurp(dir / "q.xy"), slurp(dir / "p.xy"));
 }
 
+TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
+  ScratchFolder dir;
+  Outcome r = scanstation("reconstruct " + path(test::cgal_data("meshes/cactus.off")) + " -o " + path(dir / "c.ply") +
+                          " --report " + path(dir / "c.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto report = nlohmann::json::parse(slurp(dir / "c.json"));
+  EXPECT_EQ(report["result"]["points"], 620);
+  EXPECT_EQ(report["result"]["all_on_boundary"], true);
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["closed"], true);
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["genus"], 0);
+  EXPECT_EQ(report["result"]["boundary"]["faces"], 2 * 620 - 4);
+  for (const char* stage : {"read", "delaunay", "constriction", "write", "total"})
+    EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
+  {
+    std::ofstream(dir / "square.xy") << "0 0\n2 0\n2 2\n0 2\n1 0.2\n0 0\n";
+  }
+  r = scanstation("reconstruct " + path(dir / "square.xy") + " -o " + path(dir / "p.xy") + " --svg " +
+                  path(dir / "p.svg") + " --report " + path(dir / "p.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = nlohmann::json::parse(slurp(dir / "p.json"));
+  EXPECT_EQ(report["result"]["duplicates_merged"], 1);
+  EXPECT_EQ(report["result"]["boundary"]["vertices"], 5);
+  EXPECT_EQ(report["result"]["boundary"]["simple"], true);
+  EXPECT_THAT(slurp(dir / "p.svg"), testing::HasSubstr("stroke-dasharray"));
+  r = scanstation("reconstruct " + path(dir / "square.xy") + " -o " + path(dir / "q.xy") + " --svg " + path(dir / "q.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr(".svg"));
+}
+
 TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
   ScratchFolder dir;
   Outcome r = scanstation("demo -o " + path(dir / "a"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, testing::HasSubstr("points.ply"));
-  for (const char* f : {"points.ply", "object.ply", "report.json"}) EXPECT_TRUE(std::filesystem::exists(dir / "a" / f)) << f;
+  for (const char* f : {"points.ply", "object.ply", "mesh.ply", "report.json"}) EXPECT_TRUE(std::filesystem::exists(dir / "a" / f)) << f;
   EXPECT_EQ(scanstation("demo -o " + path(dir / "a")).exit_code, 1);  // refuses to overwrite
   ASSERT_EQ(scanstation("demo -o " + path(dir / "b")).exit_code, 0);
   EXPECT_EQ(slurp(dir / "a/points.ply"), slurp(dir / "b/points.ply"));
   EXPECT_EQ(slurp(dir / "a/object.ply"), slurp(dir / "b/object.ply"));
+  EXPECT_EQ(slurp(dir / "a/mesh.ply"), slurp(dir / "b/mesh.ply"));
   const auto report = nlohmann::json::parse(slurp(dir / "a/report.json"));
   EXPECT_EQ(report["object"]["summary"]["topology"]["genus"], 0);
+  EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
+  EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
+  EXPECT_GT(report["triangle_recall"].get<double>(), 0.0);
 }
 
 }  // namespace

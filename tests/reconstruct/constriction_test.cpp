@@ -3,6 +3,7 @@
 #include "core/io/mesh_io.h"
 #include "core/mesh_topology.h"
 #include "core/polygon.h"
+#include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/random.h"
 #include "sim/shapes.h"
@@ -14,7 +15,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <numbers>
-#include <set>
 
 namespace scanstation {
 namespace {
@@ -43,22 +43,6 @@ void expect_valid_surface(const SurfaceReconstruction& r, const std::string& wha
   EXPECT_GT(volume, 0.0) << what;
   EXPECT_NEAR(volume, r.statistics.enclosed_measure, 1e-9 * std::abs(volume)) << what;
   EXPECT_EQ(t.isolated_vertices, r.statistics.interior_vertices.size()) << what;
-}
-
-std::size_t recalled_triangles(const TriangleMesh& truth, const TriangleMesh& result) {
-  std::set<std::array<int, 3>> found;
-  for (Eigen::Index f = 0; f < result.face_count(); ++f) {
-    std::array<int, 3> t{result.faces(f, 0), result.faces(f, 1), result.faces(f, 2)};
-    std::sort(t.begin(), t.end());
-    found.insert(t);
-  }
-  std::size_t hits = 0;
-  for (Eigen::Index f = 0; f < truth.face_count(); ++f) {
-    std::array<int, 3> t{truth.faces(f, 0), truth.faces(f, 1), truth.faces(f, 2)};
-    std::sort(t.begin(), t.end());
-    hits += found.count(t);
-  }
-  return hits;
 }
 
 TEST(Constriction3, GeneratedShapesGiveClosedGenusZeroBoundariesThroughAllPoints) {
@@ -90,7 +74,7 @@ TEST(Constriction3, ResultIsInvariantUnderScaleAndTranslation) {
     Eigen::MatrixX3d moved = shape.vertices.positions * scale;
     moved.rowwise() += Eigen::RowVector3d(1e3, -2e3, 5e2) * scale;
     const SurfaceReconstruction r = reconstruct_surface(moved);
-    EXPECT_EQ(recalled_triangles(base.mesh, r.mesh), static_cast<std::size_t>(base.mesh.face_count())) << scale;
+    EXPECT_EQ(triangle_recall(base.mesh.faces, r.mesh.faces), 1.0) << scale;
   }
 }
 
@@ -142,7 +126,7 @@ TEST(Constriction3, RealCgalMeshes) {
     const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions);
     EXPECT_EQ(r.mesh.vertex_count(), truth.vertex_count()) << name;
     expect_valid_surface(r, name);
-    const double recall = static_cast<double>(recalled_triangles(truth, r.mesh)) / static_cast<double>(truth.face_count());
+    const double recall = triangle_recall(truth.faces, r.mesh.faces);
     std::printf("%-12s all on boundary: %d (%zu interior), recall %.3f\n", name.c_str(), r.statistics.all_on_boundary,
                 r.statistics.interior_vertices.size(), recall);
     EXPECT_TRUE(r.statistics.all_on_boundary) << name;

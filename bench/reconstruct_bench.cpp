@@ -1,0 +1,100 @@
+// Constriction against its floor: the time CGAL needs to build the Delaunay
+// tetrahedralization of the same points, measured in the same run.
+//
+//   build/bench/reconstruct_bench [--benchmark_filter=/1000000]
+//
+// Points: uniform on an ellipsoid with radii (3, 2, 1), seeded.
+#include "reconstruct/boundary_reconstruction.h"
+#include "sim/random.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+namespace {
+
+using namespace scanstation;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+const Eigen::MatrixX3d& ellipsoid_points(Eigen::Index n) {
+  static std::map<Eigen::Index, Eigen::MatrixX3d> cache;
+  auto [it, inserted] = cache.try_emplace(n);
+  if (inserted) {
+    sim::Random random(2024);
+    it->second.resize(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::Vector3d p(random.normal(), random.normal(), random.normal());
+      it->second.row(i) = (p.normalized().array() * Eigen::Array3d(3, 2, 1)).matrix().transpose();
+    }
+  }
+  return it->second;
+}
+
+const Eigen::MatrixX2d& disc_points(Eigen::Index n) {
+  static std::map<Eigen::Index, Eigen::MatrixX2d> cache;
+  auto [it, inserted] = cache.try_emplace(n);
+  if (inserted) {
+    sim::Random random(7);
+    it->second.resize(n, 2);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * random.uniform(), r = 1.0 + 0.01 * random.normal();
+      it->second.row(i) << r * std::cos(a), r * std::sin(a);  // a noisy ring: a closed curve to find
+    }
+  }
+  return it->second;
+}
+
+void CgalDelaunay3(benchmark::State& state) {
+  const Eigen::MatrixX3d& P = ellipsoid_points(state.range(0));
+  for (auto _ : state) {
+    std::vector<Kernel::Point_3> points;
+    points.reserve(static_cast<std::size_t>(P.rows()));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
+    CGAL::Delaunay_triangulation_3<Kernel> dt(points.begin(), points.end());
+    benchmark::DoNotOptimize(dt.number_of_cells());
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
+void Reconstruct3(benchmark::State& state) {
+  const Eigen::MatrixX3d& P = ellipsoid_points(state.range(0));
+  double delaunay = 0, constriction = 0;
+  for (auto _ : state) {
+    const SurfaceReconstruction r = reconstruct_surface(P);
+    delaunay += r.statistics.delaunay_seconds;
+    constriction += r.statistics.constriction_seconds;
+    if (!r.statistics.all_on_boundary) state.SkipWithError("constriction locked");
+  }
+  state.counters["delaunay_s"] = benchmark::Counter(delaunay, benchmark::Counter::kAvgIterations);
+  state.counters["constriction_s"] = benchmark::Counter(constriction, benchmark::Counter::kAvgIterations);
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
+void CgalDelaunay2(benchmark::State& state) {
+  const Eigen::MatrixX2d& P = disc_points(state.range(0));
+  for (auto _ : state) {
+    std::vector<Kernel::Point_2> points;
+    for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P(i, 0), P(i, 1));
+    CGAL::Delaunay_triangulation_2<Kernel> dt(points.begin(), points.end());
+    benchmark::DoNotOptimize(dt.number_of_faces());
+  }
+}
+
+void Reconstruct2(benchmark::State& state) {
+  const Eigen::MatrixX2d& P = disc_points(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(reconstruct_curve(P).polygon.size());
+}
+
+BENCHMARK(CgalDelaunay3)->RangeMultiplier(10)->Range(10000, 1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Reconstruct3)->RangeMultiplier(10)->Range(10000, 1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(CgalDelaunay2)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Reconstruct2)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
