@@ -2,6 +2,7 @@
 
 #include "core/bounding_box.h"
 #include "core/mesh_topology.h"
+#include "core/self_intersections.h"
 #include "core/unique_points.h"
 
 namespace scanstation {
@@ -54,6 +55,11 @@ nlohmann::json describe(const TriangleMesh& mesh) {
 
   const MeshTopology t = mesh_topology(mesh);
   j["topology"] = topology_json(t);
+  if (t.manifold && t.oriented && mesh.vertices.dimension == 3) {
+    const auto pairs = self_intersections(mesh);
+    j["topology"]["self_intersecting_pairs"] = pairs ? nlohmann::json(*pairs) : nlohmann::json(nullptr);
+    j["topology"]["simple"] = pairs ? nlohmann::json(*pairs == 0) : nlohmann::json(nullptr);
+  }
   double area = 0.0, six_volume = 0.0;
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
     const Eigen::Vector3d a = P.row(mesh.faces(f, 0)), b = P.row(mesh.faces(f, 1)), c = P.row(mesh.faces(f, 2));

@@ -11,7 +11,8 @@ namespace scanstation {
 
 /// {"vertices", "faces", "dimension", "normals", "colors", "bounding_box":
 ///  {"min", "max", "diagonal"}, "duplicate_points"} and, when there are
-/// faces, "topology": {closed, manifold, oriented, genus, components, ...}
+/// faces, "topology": {closed, manifold, oriented, genus, components, ...,
+/// and for an oriented manifold "simple" / "self_intersecting_pairs"}
 /// plus "area" and, for a closed oriented mesh, "volume".
 nlohmann::json describe(const TriangleMesh& mesh);
 

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -42,9 +43,30 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
   s.boundary_vertices = dt.points.rows() - static_cast<Eigen::Index>(s.interior_vertices.size());
 }
 
+// Delaunay neighbours of every point.
+std::vector<std::vector<int>> adjacency(const DelaunayComplex<3>& dt) {
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(dt.points.rows()));
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (i != j) out[static_cast<std::size_t>(dt.cells(c, i))].push_back(dt.cells(c, j));
+  for (auto& n : out) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return out;
+}
+
+double enclosed_volume(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F) {
+  double six = 0.0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    six += Eigen::Vector3d(P.row(F(f, 0))).dot(Eigen::Vector3d(P.row(F(f, 1))).cross(Eigen::Vector3d(P.row(F(f, 2)))));
+  return six / 6.0;
+}
+
 }  // namespace
 
-SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ConstrictionOptions& options) {
+SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& options) {
   require_finite(points);
   SurfaceReconstruction out;
   BoundaryStatistics& s = out.statistics;
@@ -55,26 +77,33 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   const DelaunayComplex<3> dt = delaunay_complex(P);
   s.delaunay_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  Constriction<3> c = constrict(dt, options);
+  Constriction<3> c = constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);
 
   out.mesh.vertices.positions = P;
   out.mesh.faces = c.boundary;
+  if (!c.all_on_boundary && options.augment) {
+    start = std::chrono::steady_clock::now();
+    const Augmentation a = augment_constriction(P, adjacency(dt), out.mesh.faces, c.interior_vertices, options.augmentation);
+    s.constriction_seconds += seconds_since(start);
+    s.c0_used = a.c0_used;
+    s.carved = a.carved;
+    c.all_on_boundary = c.interior_vertices.empty();
+  }
   std::vector<Eigen::Index> kept;
   for (std::size_t k = 0; k < c.kept.size(); ++k)
     if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
   out.interior.resize(static_cast<Eigen::Index>(kept.size()), 4);
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    const auto t = dt.cells.row(kept[k]);
-    out.interior.row(static_cast<Eigen::Index>(k)) = t;
-    const Eigen::Vector3d a = P.row(t(0)), b = P.row(t(1)), cc = P.row(t(2)), d = P.row(t(3));
-    s.enclosed_measure += (b - a).cross(cc - a).dot(d - a) / 6.0;
+    out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
   }
+  if (s.carved > 0) out.interior.resize(0, 4);
+  s.enclosed_measure = enclosed_volume(P, out.mesh.faces);
   fill_statistics(s, dt, c);
   return out;
 }
 
-CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ConstrictionOptions& options) {
+CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ReconstructionOptions& options) {
   require_finite(points);
   CurveReconstruction out;
   BoundaryStatistics& s = out.statistics;
@@ -85,7 +114,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Cons
   const DelaunayComplex<2> dt = delaunay_complex(out.points);
   s.delaunay_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  Constriction<2> c = constrict(dt, options);
+  Constriction<2> c = constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);
 
   // The boundary edges chain into one cycle: each boundary vertex has exactly

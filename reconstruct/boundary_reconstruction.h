@@ -5,11 +5,21 @@
 
 #include "core/polygon.h"
 #include "core/triangle_mesh.h"
+#include "reconstruct/augmentation.h"
 #include "reconstruct/constriction.h"
 
+#include <optional>
 #include <vector>
 
 namespace scanstation {
+
+struct ReconstructionOptions {
+  ConstrictionOptions constriction;
+  /// When constriction locks, carve on with tetrahedra of γ([-1,1],[c0,1]),
+  /// c0 < 0 (§5.4, 3D); off: keep the locked boundary.
+  bool augment = true;
+  AugmentationOptions augmentation;
+};
 
 struct BoundaryStatistics {
   Eigen::Index input_points = 0;
@@ -19,7 +29,9 @@ struct BoundaryStatistics {
   bool all_on_boundary = false;
   std::size_t delaunay_cells = 0;
   std::size_t removed_cells = 0;
-  double enclosed_measure = 0.0;          ///< area (2D) or volume (3D) of the kept cells (§5.8)
+  double enclosed_measure = 0.0;          ///< area (2D) or volume (3D) enclosed by the boundary
+  std::optional<double> c0_used;          ///< the γ([-1,1],[c0,1]) level augmentation reached, if it ran
+  std::size_t carved = 0;                 ///< tetrahedra carved by augmentation
   double delaunay_seconds = 0.0;
   double constriction_seconds = 0.0;
 };
@@ -29,7 +41,8 @@ struct BoundaryStatistics {
 ///            occurrences, bit-identical values); faces: the boundary,
 ///            counter-clockwise seen from outside
 /// interior   #T by 4 kept tetrahedra (indices into mesh vertices): a
-///            tetrahedralization of the enclosed solid (§5.8)
+///            tetrahedralization of the enclosed solid (§5.8); empty when
+///            augmentation carved (its tetrahedra overlap Delaunay cells)
 struct SurfaceReconstruction {
   TriangleMesh mesh;
   Eigen::MatrixX4i interior;
@@ -53,7 +66,7 @@ struct CurveReconstruction {
 
 /// Throws InvalidInput for fewer than 4 (3) distinct points, or points all in
 /// one plane (on one line).
-SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ConstrictionOptions& options = {});
-CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ConstrictionOptions& options = {});
+SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& options = {});
+CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ReconstructionOptions& options = {});
 
 }  // namespace scanstation

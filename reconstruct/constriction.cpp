@@ -1,5 +1,7 @@
 #include "reconstruct/constriction.h"
 
+#include "reconstruct/gamma_indicator.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -14,13 +16,6 @@ namespace {
 // Vertices of the face opposite local vertex i, ordered so that the face is
 // counter-clockwise seen from outside a positively oriented tetrahedron.
 constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-double signed_magnitude(double r_over_R, double side_vertex, double side_centre) {
-  const double magnitude = std::clamp(1.0 - r_over_R, 0.0, 1.0);
-  if (side_vertex * side_centre > 0) return magnitude;
-  if (side_vertex * side_centre < 0) return -magnitude;
-  return 0.0;
-}
 
 // How many boundary triangles use each undirected edge, for the 3D
 // removability test "the opposite edge is not already in the boundary".
@@ -243,36 +238,13 @@ class Constrictor {
 }  // namespace
 
 double gamma_indicator(const DelaunayComplex<2>& complex, int cell, int face) {
-  const Eigen::Vector2d l = complex.points.row(complex.cells(cell, face));
-  const Eigen::Vector2d a = complex.points.row(complex.cells(cell, (face + 1) % 3));
-  const Eigen::Vector2d b = complex.points.row(complex.cells(cell, (face + 2) % 3));
-  // Circumcentre relative to l.
-  const Eigen::Vector2d u = a - l, v = b - l;
-  const double d = 2.0 * (u.x() * v.y() - u.y() * v.x());
-  const Eigen::Vector2d centre(v.y() * u.squaredNorm() - u.y() * v.squaredNorm(),
-                               u.x() * v.squaredNorm() - v.x() * u.squaredNorm());
-  const Eigen::Vector2d c = centre / d;  // C − l
-  const double R = c.norm(), r = 0.5 * (b - a).norm();
-  if (!std::isfinite(R) || R == 0.0) return 1.0;
-  const Eigen::Vector2d e = b - a, n(-e.y(), e.x());
-  return signed_magnitude(r / R, n.dot(l - a), n.dot(c + (l - a)));  // Definition 5.1, Eq. (5.1)
+  const auto p = [&](int k) { return Eigen::Vector2d(complex.points.row(complex.cells(cell, k))); };
+  return gamma_indicator(p((face + 1) % 3), p((face + 2) % 3), p(face));
 }
 
 double gamma_indicator(const DelaunayComplex<3>& complex, int cell, int face) {
-  const Eigen::Vector3d l = complex.points.row(complex.cells(cell, face));
-  const Eigen::Vector3d a = complex.points.row(complex.cells(cell, kFace3[face][0]));
-  const Eigen::Vector3d b = complex.points.row(complex.cells(cell, kFace3[face][1]));
-  const Eigen::Vector3d c = complex.points.row(complex.cells(cell, kFace3[face][2]));
-  // Circumcentre of the tetrahedron relative to l.
-  const Eigen::Vector3d u = a - l, v = b - l, w = c - l;
-  const double d = 2.0 * u.dot(v.cross(w));
-  const Eigen::Vector3d centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / d;
-  const double R = centre.norm();
-  // Radius of the face's circumcircle: |e1||e2||e1−e2| / (2|e1×e2|).
-  const Eigen::Vector3d e1 = b - a, e2 = c - a, n = e1.cross(e2);
-  const double r = e1.norm() * e2.norm() * (e1 - e2).norm() / (2.0 * n.norm());
-  if (!std::isfinite(R) || !std::isfinite(r) || R == 0.0) return 1.0;
-  return signed_magnitude(r / R, n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.2, Eq. (5.2)
+  const auto p = [&](int k) { return Eigen::Vector3d(complex.points.row(complex.cells(cell, k))); };
+  return gamma_indicator(p(kFace3[face][0]), p(kFace3[face][1]), p(kFace3[face][2]), p(face));
 }
 
 Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options) {

@@ -49,11 +49,8 @@ struct Constriction {
 Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options = {});
 Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options = {});
 
-/// The γ-indicator of the face of `cell` opposite its local vertex `face`,
-/// with respect to that vertex: ±(1 − r/R), r the radius of the face's
-/// smallest circumscribed circle (sphere), R the cell's circumradius; positive
-/// when the circumcentre lies on the same side of the face as the vertex.
-/// 2D: Definition 5.1; 3D: Definition 5.2.
+/// The γ-indicator (reconstruct/gamma_indicator.h) of the face of `cell`
+/// opposite its local vertex `face`, with respect to that vertex.
 double gamma_indicator(const DelaunayComplex<2>& complex, int cell, int face);
 double gamma_indicator(const DelaunayComplex<3>& complex, int cell, int face);
 

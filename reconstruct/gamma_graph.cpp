@@ -424,7 +424,14 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
 }
 
 // ---------------------------------------------------------------------------
-// Static k-d tree over the distinct points: ball queries with early exit.
+// Static k-d tree over the distinct points: visits the points of the nodes
+// whose bounding box meets every ball of a list, with early exit.
+
+template <int D>
+struct Ball {
+  typename GammaTraits<D>::Vec centre;
+  double radius;
+};
 
 template <int D>
 class KdTree {
@@ -434,10 +441,13 @@ class KdTree {
     std::iota(order_.begin(), order_.end(), 0);
     if (!order_.empty()) build(0, static_cast<int>(order_.size()), 0);
   }
-  // Calls visit(i) for every point with |P[i] - c| ≤ radius, nearest subtrees
-  // first; stops when visit returns false.
-  void visit_ball(const Vec& c, double radius, const std::function<bool(int)>& visit) const {
-    if (!order_.empty()) walk(0, static_cast<int>(order_.size()), 0, c, radius * radius, radius, visit);
+  // Calls visit(i) for (at least) every point lying in all `balls`; stops
+  // when visit returns false. Returns false if stopped.
+  template <typename Visit>
+  bool visit(const std::vector<Ball<D>>& balls, Visit&& visit) const {
+    if (order_.empty()) return true;
+    Vec lo = Vec::Constant(-std::numeric_limits<double>::infinity()), hi = -lo;
+    return walk(0, static_cast<int>(order_.size()), 0, lo, hi, balls, visit);
   }
 
  private:
@@ -449,47 +459,86 @@ class KdTree {
     build(lo, mid, depth + 1);
     build(mid + 1, hi, depth + 1);
   }
-  bool walk(int lo, int hi, int depth, const Vec& c, double r2, double r,
-            const std::function<bool(int)>& visit) const {
+  static bool meets(const Vec& lo, const Vec& hi, const std::vector<Ball<D>>& balls) {
+    for (const auto& b : balls) {
+      const Vec q = b.centre.cwiseMax(lo).cwiseMin(hi);
+      if ((q - b.centre).squaredNorm() > b.radius * b.radius * (1 + 1e-9)) return false;
+    }
+    return true;
+  }
+  template <typename Visit>
+  bool walk(int lo, int hi, int depth, const Vec& blo, const Vec& bhi, const std::vector<Ball<D>>& balls,
+            Visit& visit) const {
+    if (!meets(blo, bhi, balls)) return true;
     if (hi - lo <= 8) {
       for (int k = lo; k < hi; ++k)
-        if ((P_[order_[k]] - c).squaredNorm() <= r2 && !visit(order_[k])) return false;
+        if (!visit(order_[k])) return false;
       return true;
     }
     const int axis = depth % D, mid = (lo + hi) / 2, m = order_[mid];
-    const double split = P_[m][axis], d = c[axis] - split;
-    if ((P_[m] - c).squaredNorm() <= r2 && !visit(m)) return false;
-    const bool left_first = d < 0;
-    for (int pass = 0; pass < 2; ++pass) {
-      const bool left = (pass == 0) == left_first;
-      if (pass == 1 && std::abs(d) > r) break;
-      if (!(left ? walk(lo, mid, depth + 1, c, r2, r, visit) : walk(mid + 1, hi, depth + 1, c, r2, r, visit)))
-        return false;
-    }
-    return true;
+    if (!visit(m)) return false;
+    Vec left_hi = bhi, right_lo = blo;
+    left_hi[axis] = right_lo[axis] = P_[m][axis];
+    const bool left_first = balls.empty() || balls.front().centre[axis] < P_[m][axis];
+    if (left_first)
+      return walk(lo, mid, depth + 1, blo, left_hi, balls, visit) &&
+             walk(mid + 1, hi, depth + 1, right_lo, bhi, balls, visit);
+    return walk(mid + 1, hi, depth + 1, right_lo, bhi, balls, visit) &&
+           walk(lo, mid, depth + 1, blo, left_hi, balls, visit);
   }
   const std::vector<Vec>& P_;
   std::vector<int> order_;
 };
 
-// Profile of s restricted to the ball holding both balls of N_γ(floor,floor);
-// nullopt as soon as a vertex lies in that lens (then c'1 < floor).
+// Exact profile of s when c'1 < 0 and c'1 ≥ floor, else nullopt.
+// Phase 1: is a vertex inside the lens N_γ(floor,floor) = ball(floor) ∩
+// ball(-floor)? (k-d nodes must meet both balls.) Then c'1 < floor.
+// Phase 2: lo and hi from the vertices in ball(floor) ∪ ball(-floor): when
+// c'1 < 0 both a = hi and b = -lo are < |floor| (|c'0| ≤ |c'1| ≤ |floor|),
+// so their vertices lie in those balls. Rows with c'1 ≥ 0 are not needed
+// here (the Delaunay path has them).
 template <int D>
-std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree, const std::type_identity_t<Index<D>>& s, double floor) {
+std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree,
+                                    const std::type_identity_t<Index<D>>& s, double floor) {
   const Pencil<D> pencil(positions(in, s));
   if (!GammaTraits<D>::is_simplex(pencil.s)) return std::nullopt;
   const double f = std::abs(floor);
-  const double R = pencil.r / (1.0 - f), offset = std::sqrt(std::max(0.0, R * R - pencil.r * pencil.r));
-  const double reach = f >= 1 ? std::numeric_limits<double>::infinity() : (R + offset) * (1 + 1e-9);
+  const auto own = [&](int i) { return std::find(s.begin(), s.end(), i) != s.end(); };
   Profile pr;
-  bool in_lens = false;
-  tree.visit_ball(pencil.m, reach, [&](int i) {
-    if (std::find(s.begin(), s.end(), i) != s.end()) return true;
-    pencil.add(pr, i, in.P[i]);
-    in_lens = pr.blocked || (pr.disc && f < 1) || pr.hi < floor || pr.lo > -floor;
-    return !in_lens;
+  if (f >= 1) {  // N_γ(-1,-1) is the open simplex: every vertex counts
+    for (int i = 0; i < static_cast<int>(in.P.size()); ++i)
+      if (!own(i)) pencil.add(pr, i, in.P[i]);
+    if (pr.blocked) return std::nullopt;
+    pencil.finish(pr, in.P);
+    return pr;
+  }
+  const double R = pencil.r / (1.0 - f), offset = std::sqrt(std::max(0.0, R * R - pencil.r * pencil.r));
+  const Ball<D> towards_a{pencil.m + offset * pencil.n, R}, towards_b{pencil.m - offset * pencil.n, R};
+  Profile probe;
+  const bool lens_empty = tree.visit({towards_a, towards_b}, [&](int i) {
+    if (own(i)) return true;
+    probe = Profile{};
+    pencil.add(probe, i, in.P[i]);
+    return !(probe.blocked || probe.disc || probe.hi < floor || probe.lo > -floor);
   });
-  if (in_lens) return std::nullopt;
+  if (!lens_empty) return std::nullopt;
+  // Shrinking searches: side-A vertices with t_p < τ fill ball(τ) ∩ A, and τ
+  // drops to the best hi found so far (side B mirrored), like a nearest
+  // neighbour search.
+  const auto ball_at = [&](double t) {
+    const double Rt = pencil.r / (1.0 - std::abs(t));
+    const double off = std::sqrt(std::max(0.0, Rt * Rt - pencil.r * pencil.r));
+    return Ball<D>{pencil.m + (t < 0 ? -off : off) * pencil.n, Rt};
+  };
+  for (int side : {1, -1}) {
+    std::vector<Ball<D>> search{side > 0 ? towards_a : towards_b};
+    tree.visit(search, [&](int i) {
+      if (own(i)) return true;
+      pencil.add(pr, i, in.P[i]);
+      search[0] = ball_at(side > 0 ? std::min(pr.hi, f) : std::max(pr.lo, -f));
+      return true;
+    });
+  }
   pencil.finish(pr, in.P);
   return pr;
 }

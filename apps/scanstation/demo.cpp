@@ -38,8 +38,8 @@ class DemoCommand final : public Command {
     const TriangleMesh object = sim::surface_of_revolution(sim::chalice_profile(profile_samples_), segments_);
     simulate.stop();
 
-    ConstrictionOptions options;
-    options.progress = context.progress.stage("constrict");
+    ReconstructionOptions options;
+    options.constriction.progress = context.progress.stage("constrict");
     const SurfaceReconstruction r = reconstruct_surface(object.vertices.positions, options);
     context.progress.finish();
     context.report.add_seconds("delaunay", r.statistics.delaunay_seconds);

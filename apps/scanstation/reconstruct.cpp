@@ -4,6 +4,7 @@
 #include "core/describe.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "core/io/number_text.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/boundary_svg.h"
 
@@ -22,7 +23,8 @@ nlohmann::json statistics_json(const BoundaryStatistics& s) {
           {"all_on_boundary", s.all_on_boundary},
           {"delaunay_cells", s.delaunay_cells},
           {"removed_cells", s.removed_cells},
-          {"c0_used", nullptr}};
+          {"c0_used", s.c0_used ? nlohmann::json(*s.c0_used) : nlohmann::json(nullptr)},
+          {"carved", s.carved}};
 }
 
 class ReconstructCommand final : public Command {
@@ -32,12 +34,16 @@ class ReconstructCommand final : public Command {
     cli_->add_option("input", input_, "Points: xyz (2 or 3 columns), ply, off, obj, stl vertices")->required();
     cli_->add_option("-o,--output", output_, "Boundary: a mesh (3D) or a polygon as svg / text (2D)")->required();
     cli_->add_option("--format", format_, "Input format, when the extension does not tell");
-    auto* more = cli_->add_option("--continue", options_.extra_removals,
+    auto* more = cli_->add_option("--continue", options_.constriction.extra_removals,
                                   "Further removals once every point is on the boundary (§5.3)");
     auto* until = cli_->add_option("--until-indicator", until_,
                                    "Once every point is on the boundary, keep removing while the smallest "
                                    "γ-indicator (3D: sum of two) is below this value");
     more->excludes(until);
+    cli_->add_option("--augment", augment_,
+                     "When constriction locks (§5.4): auto (lower c0 from -0.1 to -1 until every point is on the "
+                     "boundary), off, or a fixed c0 in [-1, 0)")
+        ->capture_default_str();
     cli_->add_option("--svg", svg_, "2D: draw the Delaunay graph, removed triangles and boundary (Fig. 5.2)");
     cli_->footer("Output vertices are the distinct input points, bit for bit; duplicates are merged and counted.");
   }
@@ -45,12 +51,13 @@ class ReconstructCommand final : public Command {
   void run(CommandContext& context) override {
     io::check_writable(output_, context.overwrite);
     if (svg_) io::check_writable(*svg_, context.overwrite);
-    options_.until_indicator = until_;
+    options_.constriction.until_indicator = until_;
+    configure_augmentation();
     StageTimer read_timer(context.report, "read");
     const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
     context.progress.finish();
     read_timer.stop();
-    options_.progress = context.progress.stage("constrict");
+    options_.constriction.progress = context.progress.stage("constrict");
     const io::WriteOptions write{std::nullopt, std::nullopt, context.overwrite};
     nlohmann::json& result = context.report["result"];
     if (cloud.dimension == 2) {
@@ -81,6 +88,18 @@ class ReconstructCommand final : public Command {
   }
 
  private:
+  void configure_augmentation() {
+    if (augment_ == "auto") return;
+    if (augment_ == "off") {
+      options_.augment = false;
+      return;
+    }
+    const auto c0 = io::parse_double(augment_);
+    if (!c0 || !(*c0 >= -1.0 && *c0 < 0.0))
+      throw InvalidInput("--augment: expected auto, off or a number in [-1, 0), got '" + augment_ + "'");
+    options_.augmentation.highest = options_.augmentation.lowest = *c0;
+  }
+
   static void record_times(CommandContext& context, const BoundaryStatistics& s) {
     context.report.add_seconds("delaunay", s.delaunay_seconds);
     context.report.add_seconds("constriction", s.constriction_seconds);
@@ -91,6 +110,7 @@ class ReconstructCommand final : public Command {
                 shape.c_str(), static_cast<long long>(s.boundary_vertices),
                 static_cast<long long>(s.boundary_vertices + static_cast<Eigen::Index>(s.interior_vertices.size())),
                 static_cast<long long>(s.duplicates_merged));
+    if (s.carved > 0) std::printf("augmentation (§5.4) carved %zu tetrahedra down to c0 = %g\n", s.carved, *s.c0_used);
     if (!s.all_on_boundary)
       std::printf("constriction locked: %zu points stayed inside (listed in the report); the boundary written is the "
                   "best found\n",
@@ -101,7 +121,8 @@ class ReconstructCommand final : public Command {
   std::optional<std::string> format_;
   std::optional<double> until_;
   std::optional<std::filesystem::path> svg_;
-  ConstrictionOptions options_;
+  ReconstructionOptions options_;
+  std::string augment_ = "auto";
 };
 
 }  // namespace

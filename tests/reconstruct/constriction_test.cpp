@@ -3,6 +3,7 @@
 #include "core/io/mesh_io.h"
 #include "core/mesh_topology.h"
 #include "core/polygon.h"
+#include "core/self_intersections.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/random.h"
@@ -41,8 +42,17 @@ void expect_valid_surface(const SurfaceReconstruction& r, const std::string& wha
   EXPECT_EQ(t.components, 1u) << what;
   const double volume = signed_volume(r.mesh);
   EXPECT_GT(volume, 0.0) << what;
-  EXPECT_NEAR(volume, r.statistics.enclosed_measure, 1e-9 * std::abs(volume)) << what;
+  // The kept tetrahedra fill exactly the enclosed solid (§5.8).
+  double kept = 0.0;
+  for (Eigen::Index t = 0; t < r.interior.rows(); ++t) {
+    const auto p = [&](int k) { return Eigen::Vector3d(r.mesh.vertices.positions.row(r.interior(t, k))); };
+    kept += (p(1) - p(0)).cross(p(2) - p(0)).dot(p(3) - p(0)) / 6.0;
+  }
+  if (r.statistics.carved == 0) {
+    EXPECT_NEAR(volume, kept, 1e-9 * std::abs(volume)) << what;
+  }
   EXPECT_EQ(t.isolated_vertices, r.statistics.interior_vertices.size()) << what;
+  EXPECT_EQ(self_intersections(r.mesh), std::optional<std::size_t>(0)) << what << ": not simple";
 }
 
 TEST(Constriction3, GeneratedShapesGiveClosedGenusZeroBoundariesThroughAllPoints) {
@@ -78,10 +88,11 @@ TEST(Constriction3, ResultIsInvariantUnderScaleAndTranslation) {
   }
 }
 
-// Random clouds (uniform in a ball: many points deep inside) may lock
-// constriction, but whatever it returns must be a valid boundary.
+// Random clouds (uniform in a ball: many points deep inside) lock plain
+// constriction; with augmentation every point must reach a valid boundary.
 TEST(Constriction3, RandomCloudsAlwaysGiveValidBoundaries) {
   sim::Random random(11);
+  int reached = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const Eigen::Index n = 5 + static_cast<Eigen::Index>(random.below(200));
     Eigen::MatrixX3d P(n, 3);
@@ -91,7 +102,29 @@ TEST(Constriction3, RandomCloudsAlwaysGiveValidBoundaries) {
       while (p.norm() > 1.0);
       P.row(i) = trial % 2 ? Eigen::Vector3d(p.normalized()) : p;  // on the sphere, or inside
     }
-    expect_valid_surface(reconstruct_surface(P), "trial " + std::to_string(trial));
+    const SurfaceReconstruction r = reconstruct_surface(P);
+    expect_valid_surface(r, "trial " + std::to_string(trial));
+    reached += r.statistics.all_on_boundary;
+  }
+  EXPECT_EQ(reached, 40);
+}
+
+// Meshes on which plain constriction locks (§5.4): augmentation must bring
+// every point to a simple, closed, genus-0 boundary, and "off" must not.
+TEST(Constriction3, AugmentationReachesEveryPointWhereConstrictionLocks) {
+  for (const std::string name : {"cow", "homer", "retinal"}) {
+    const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/" + name + ".off"));
+    ReconstructionOptions off;
+    off.augment = false;
+    const SurfaceReconstruction locked = reconstruct_surface(truth.vertices.positions, off);
+    EXPECT_FALSE(locked.statistics.all_on_boundary) << name;
+    expect_valid_surface(locked, name + " locked");
+    const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << name;
+    ASSERT_TRUE(r.statistics.c0_used.has_value()) << name;
+    EXPECT_LT(*r.statistics.c0_used, 0.0) << name;
+    EXPECT_GT(r.statistics.carved, 0u) << name;
+    expect_valid_surface(r, name);
   }
 }
 

@@ -1,0 +1,47 @@
+// Hamiltonicity augmentation (thesis §5.4): when constriction of the
+// Delaunay triangulation locks before every point is on the boundary, carve
+// on with tetrahedra of γ([-1,1],[c0,1]), c0 < 0, lowering c0 step by step.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace scanstation {
+
+struct AugmentationOptions {
+  double step = 0.1;              ///< how much c0 drops per level
+  double highest = -0.1;          ///< first level tried
+  double lowest = -1.0;           ///< last level tried (γ([-1,1],[-1,1]) is complete)
+};
+
+/// What augmentation did: the level that brought the last point to the
+/// boundary (or the lowest tried) and how many tetrahedra it carved.
+struct Augmentation {
+  std::optional<double> c0_used;
+  std::size_t carved = 0;
+};
+
+/// points             #P by 3 positions (distinct)
+/// adjacency          per point, its Delaunay neighbours (candidates are the
+///                    boundary triangles within two Delaunay edges of a point)
+/// boundary           (in/out) #F by 3 closed, oriented, genus-0 surface,
+///                    counter-clockwise seen from outside
+/// interior_vertices  (in/out) points not yet on the boundary
+///
+/// A carve removes the tetrahedron (a, b, c, v) behind a boundary triangle
+/// (a, b, c) and brings the interior point v to the boundary; allowed when
+/// its three new triangles are in γ([-1,1],[c0,1]) (their symmetric lens
+/// N_γ(c0,c0) holds no point, Lemma 3.3), no other point lies in the closed
+/// tetrahedron, and no boundary triangle meets a new one except in shared
+/// vertices or edges (the thesis deletes "the simplices that cross a removed
+/// one"; here that is an exact intersection test). Then the boundary stays a
+/// closed, simple, 2-manifold of genus 0. Among allowed carves the smallest
+/// γ-indicator (Definition 5.2) goes first, as in constriction.
+Augmentation augment_constriction(const Eigen::MatrixX3d& points, const std::vector<std::vector<int>>& adjacency,
+                                  Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
+                                  const AugmentationOptions& options = {});
+
+}  // namespace scanstation

@@ -1,0 +1,46 @@
+#include "reconstruct/gamma_indicator.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace scanstation {
+
+namespace {
+// The construction only ranks candidates (no topology depends on it), so
+// doubles suffice; the sign compares the sides of l and of the centre.
+double signed_magnitude(double r_over_R, double side_vertex, double side_centre) {
+  const double magnitude = std::clamp(1.0 - r_over_R, 0.0, 1.0);
+  if (side_vertex * side_centre > 0) return magnitude;
+  if (side_vertex * side_centre < 0) return -magnitude;
+  return 0.0;
+}
+}  // namespace
+
+double gamma_indicator(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& l) {
+  const Eigen::Vector2d u = a - l, v = b - l;  // circumcentre relative to l
+  const double d = 2.0 * (u.x() * v.y() - u.y() * v.x());
+  const Eigen::Vector2d centre = Eigen::Vector2d(v.y() * u.squaredNorm() - u.y() * v.squaredNorm(),
+                                                 u.x() * v.squaredNorm() - v.x() * u.squaredNorm()) / d;
+  const double R = centre.norm(), r = 0.5 * (b - a).norm();
+  if (!std::isfinite(R) || R == 0.0) return 1.0;
+  const Eigen::Vector2d e = b - a, n(-e.y(), e.x());
+  return signed_magnitude(r / R, n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.1, Eq. (5.1)
+}
+
+double gamma_indicator(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                       const Eigen::Vector3d& l) {
+  const Eigen::Vector3d u = a - l, v = b - l, w = c - l;  // circumcentre relative to l
+  const double d = 2.0 * u.dot(v.cross(w));
+  const Eigen::Vector3d centre =
+      (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / d;
+  const double R = centre.norm();
+  // Circumradius of the face: |e1||e2||e1−e2| / (2|e1×e2|).
+  const Eigen::Vector3d e1 = b - a, e2 = c - a, n = e1.cross(e2);
+  const double r = e1.norm() * e2.norm() * (e1 - e2).norm() / (2.0 * n.norm());
+  if (!std::isfinite(R) || !std::isfinite(r) || R == 0.0) return 1.0;
+  return signed_magnitude(r / R, n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.2, Eq. (5.2)
+}
+
+}  // namespace scanstation
