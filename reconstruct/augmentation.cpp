@@ -112,6 +112,12 @@ class Augmenter {
 
   Augmentation run(std::vector<int>& interior, const AugmentationOptions& options) {
     Augmentation result;
+    for (Eigen::Index k = 0; k < options.keep.rows(); ++k) {
+      Triangle t{options.keep(k, 0), options.keep(k, 1), options.keep(k, 2)};
+      std::sort(t.begin(), t.end());
+      keep_.push_back(t);
+    }
+    std::sort(keep_.begin(), keep_.end());
     for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
       c0 = std::max(c0, options.lowest);
       heap_ = {};
@@ -255,6 +261,9 @@ class Augmenter {
   bool allowed(int f, int v, double c0) const {
     const Triangle& t = faces_[static_cast<std::size_t>(f)];
     const int a = t[0], b = t[1], c = t[2];
+    Triangle sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::binary_search(keep_.begin(), keep_.end(), sorted)) return false;
     const std::array<Triangle, 3> fresh{{{a, b, v}, {b, c, v}, {c, a, v}}};
     for (const Triangle& n : fresh)
       if (!in_gamma(n[0], n[1], n[2], c0)) return false;
@@ -292,6 +301,7 @@ class Augmenter {
   std::vector<std::vector<int>> faces_at_;
   std::vector<char> on_boundary_;
   std::priority_queue<Carve> heap_;
+  std::vector<Triangle> keep_;  // sorted triples
 };
 
 }  // namespace

@@ -15,6 +15,7 @@ struct AugmentationOptions {
   double step = 0.1;              ///< how much c0 drops per level
   double highest = -0.1;          ///< first level tried
   double lowest = -1.0;           ///< last level tried (γ([-1,1],[-1,1]) is complete)
+  Eigen::MatrixXi keep;           ///< #K by 3 triangles never carved away (§5.7)
 };
 
 /// What augmentation did: the level that brought the last point to the

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <cmath>
 
 namespace scanstation {
@@ -17,16 +18,32 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Distinct rows of P (first occurrences, input order) and the count dropped.
+// Distinct rows of P (first occurrences, input order), the count dropped,
+// and for each input row its distinct row.
 template <int D>
 Eigen::Matrix<double, Eigen::Dynamic, D> distinct(const Eigen::Matrix<double, Eigen::Dynamic, D>& P,
-                                                  Eigen::Index& duplicates) {
+                                                  Eigen::Index& duplicates, std::vector<Eigen::Index>& map) {
   Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(P.rows(), 3);
   padded.leftCols(D) = P;
-  std::vector<Eigen::Index> first, map;
+  std::vector<Eigen::Index> first;
   duplicates = unique_points(padded, first, map);
   Eigen::Matrix<double, Eigen::Dynamic, D> out(static_cast<Eigen::Index>(first.size()), D);
   for (std::size_t k = 0; k < first.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = P.row(first[k]);
+  return out;
+}
+
+// Kept faces given by input indices, renumbered to the distinct points.
+ReconstructionOptions renumbered(const ReconstructionOptions& options, const std::vector<Eigen::Index>& map) {
+  ReconstructionOptions out = options;
+  for (Eigen::Index k = 0; k < out.constriction.keep.rows(); ++k)
+    for (Eigen::Index i = 0; i < out.constriction.keep.cols(); ++i) {
+      const int v = out.constriction.keep(k, i);
+      if (v < 0 || static_cast<std::size_t>(v) >= map.size())
+        throw InvalidInput("kept face " + std::to_string(k) + ": point index " + std::to_string(v) + " out of range [0, " +
+                           std::to_string(map.size()) + ")");
+      out.constriction.keep(k, i) = static_cast<int>(map[static_cast<std::size_t>(v)]);
+    }
+  if (out.constriction.keep.cols() == 3) out.augmentation.keep = out.constriction.keep;
   return out;
 }
 
@@ -41,6 +58,7 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
   s.interior_vertices = std::move(c.interior_vertices);
   s.all_on_boundary = c.all_on_boundary;
   s.boundary_vertices = dt.points.rows() - static_cast<Eigen::Index>(s.interior_vertices.size());
+  s.kept_faces_on_boundary = c.kept_faces_on_boundary;
 }
 
 // Delaunay neighbours of every point.
@@ -66,12 +84,14 @@ double enclosed_volume(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F) {
 
 }  // namespace
 
-SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& options) {
+SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& given) {
   require_finite(points);
   SurfaceReconstruction out;
   BoundaryStatistics& s = out.statistics;
   s.input_points = points.rows();
-  const Eigen::MatrixX3d P = distinct<3>(points, s.duplicates_merged);
+  std::vector<Eigen::Index> map;
+  const Eigen::MatrixX3d P = distinct<3>(points, s.duplicates_merged, map);
+  const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
   const DelaunayComplex<3> dt = delaunay_complex(P);
@@ -103,12 +123,14 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   return out;
 }
 
-CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ReconstructionOptions& options) {
+CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ReconstructionOptions& given) {
   require_finite(points);
   CurveReconstruction out;
   BoundaryStatistics& s = out.statistics;
   s.input_points = points.rows();
-  out.points = distinct<2>(points, s.duplicates_merged);
+  std::vector<Eigen::Index> map;
+  out.points = distinct<2>(points, s.duplicates_merged, map);
+  const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
   const DelaunayComplex<2> dt = delaunay_complex(out.points);

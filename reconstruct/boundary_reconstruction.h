@@ -32,6 +32,7 @@ struct BoundaryStatistics {
   double enclosed_measure = 0.0;          ///< area (2D) or volume (3D) enclosed by the boundary
   std::optional<double> c0_used;          ///< the γ([-1,1],[c0,1]) level augmentation reached, if it ran
   std::size_t carved = 0;                 ///< tetrahedra carved by augmentation
+  std::size_t kept_faces_on_boundary = 0; ///< of the faces asked to stay (§5.7), how many are on the boundary
   double delaunay_seconds = 0.0;
   double constriction_seconds = 0.0;
 };
@@ -64,6 +65,8 @@ struct CurveReconstruction {
   BoundaryStatistics statistics;
 };
 
+/// Kept faces (options.constriction.keep) index the input points; duplicates
+/// of a point stand for its first occurrence.
 /// Throws InvalidInput for fewer than 4 (3) distinct points, or points all in
 /// one plane (on one line).
 SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& options = {});

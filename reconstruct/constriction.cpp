@@ -1,5 +1,6 @@
 #include "reconstruct/constriction.h"
 
+#include "core/errors.h"
 #include "reconstruct/gamma_indicator.h"
 
 #include <Eigen/Geometry>
@@ -8,6 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <queue>
+#include <string>
+#include <unordered_map>
 
 namespace scanstation {
 
@@ -97,6 +100,7 @@ class Constrictor {
         edges_(D == 3 ? static_cast<std::size_t>(complex.points.rows()) * 8 : 0) {}
 
   Constriction<D> run() {
+    mark_kept_faces();
     initial_boundary();
     std::size_t extra = 0;
     while (!heap_.empty()) {
@@ -157,9 +161,58 @@ class Constrictor {
     return n;
   }
 
+  // Sorted vertex tuple of a face, packed for hashing (D ≤ 3 indices < 2^21).
+  std::uint64_t face_key(const int* v) const {
+    int s[D];
+    std::copy(v, v + D, s);
+    std::sort(s, s + D);
+    std::uint64_t k = 0;
+    for (int i = 0; i < D; ++i) k = (k << 21) | static_cast<std::uint64_t>(s[i]);
+    return k;
+  }
+  std::uint64_t cell_face_key(int c, int i) const {
+    int v[D];
+    for (int k = 0, n = 0; k <= D; ++k)
+      if (k != i) v[n++] = vertex(c, k);
+    return face_key(v);
+  }
+
+  // §5.7: faces that must stay, flagged per cell face.
+  void mark_kept_faces() {
+    if (options_.keep.rows() == 0) return;
+    if (options_.keep.cols() != D) throw InvalidInput("kept faces need " + std::to_string(D) + " vertex indices each");
+    if (dt_.points.rows() >= (Eigen::Index{1} << 21))
+      throw InvalidInput("constrained constriction supports up to 2^21 points");
+    std::unordered_map<std::uint64_t, int> wanted;
+    for (Eigen::Index k = 0; k < options_.keep.rows(); ++k) {
+      int v[D];
+      for (int i = 0; i < D; ++i) {
+        v[i] = options_.keep(k, i);
+        if (v[i] < 0 || v[i] >= dt_.points.rows())
+          throw InvalidInput("kept face " + std::to_string(k) + ": vertex index " + std::to_string(v[i]) + " out of range");
+      }
+      wanted.emplace(face_key(v), static_cast<int>(k));
+    }
+    fixed_.assign(static_cast<std::size_t>(cells_), 0);
+    std::vector<char> found(static_cast<std::size_t>(options_.keep.rows()), 0);
+    for (int c = 0; c < cells_; ++c)
+      for (int i = 0; i <= D; ++i)
+        if (const auto it = wanted.find(cell_face_key(c, i)); it != wanted.end()) {
+          fixed_[static_cast<std::size_t>(c)] |= static_cast<std::uint8_t>(1u << i);
+          found[static_cast<std::size_t>(it->second)] = 1;
+        }
+    for (std::size_t k = 0; k < found.size(); ++k)
+      if (!found[k])
+        throw InvalidInput("kept face " + std::to_string(k) +
+                           " is not a face of the Delaunay triangulation; constrained constriction keeps Delaunay faces");
+  }
+  bool fixed(int c, int i) const { return !fixed_.empty() && (fixed_[static_cast<std::size_t>(c)] >> i & 1u); }
+
   bool removable(int c) const {
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
+    for (int k = 0; k < n; ++k)
+      if (fixed(c, faces[k])) return false;  // deleting c would delete a kept face
     if (n == 1) return !on_boundary_[static_cast<std::size_t>(vertex(c, faces[0]))];
     if constexpr (D == 3)
       if (n == 2) return !edges_.contains(vertex(c, faces[0]), vertex(c, faces[1]));
@@ -172,9 +225,33 @@ class Constrictor {
     if (!kept_[static_cast<std::size_t>(c)] || !removable(c)) return;
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
-    double key = 0.0;
-    for (int k = 0; k < n; ++k) key += gamma_indicator(dt_, c, faces[k]);
-    heap_.push({key, c, stamp_[static_cast<std::size_t>(c)]});
+    heap_.push({key(c, faces, n), c, stamp_[static_cast<std::size_t>(c)]});
+  }
+
+  double key(int c, const int (&faces)[D + 1], int n) const {
+    if (options_.criterion == ConstrictionCriterion::minimal_area_change) {
+      // Expression (4.1): (Σ interior faces − Σ boundary faces) / Σ all faces;
+      // "area" is length in 2D.
+      double inner = 0.0, outer = 0.0;
+      for (int i = 0; i <= D; ++i) {
+        const double m = face_measure(c, i);
+        (std::find(faces, faces + n, i) != faces + n ? outer : inner) += m;
+      }
+      return (inner - outer) / (inner + outer);
+    }
+    double sum = 0.0;  // §5.3: two boundary faces of one tetrahedron add up
+    for (int k = 0; k < n; ++k) sum += gamma_indicator(dt_, c, faces[k]);
+    return sum;
+  }
+
+  double face_measure(int c, int i) const {
+    const auto p = [&](int k) { return dt_.points.row(vertex(c, k)).transpose().eval(); };
+    if constexpr (D == 2) {
+      return (p((i + 1) % 3) - p((i + 2) % 3)).norm();
+    } else {
+      const auto a = p(kFace3[i][0]), b = p(kFace3[i][1]), d = p(kFace3[i][2]);
+      return 0.5 * (b - a).cross(d - a).norm();
+    }
   }
 
   // Line 6: the cell leaves the pruned graph; its boundary faces stop being
@@ -220,6 +297,9 @@ class Constrictor {
       if (!on_boundary_[static_cast<std::size_t>(v)]) out.interior_vertices.push_back(static_cast<int>(v));
     out.removed_cells = removed_;
     out.all_on_boundary = out.interior_vertices.empty();
+    for (int c = 0; c < cells_; ++c)
+      for (int i = 0; i <= D && !fixed_.empty(); ++i)
+        if (kept_[static_cast<std::size_t>(c)] && fixed(c, i) && boundary_face(c, i)) ++out.kept_faces_on_boundary;
     return out;
   }
 
@@ -233,6 +313,7 @@ class Constrictor {
   EdgeCounter edges_;
   std::priority_queue<Candidate> heap_;
   std::size_t removed_ = 0;
+  std::vector<std::uint8_t> fixed_;  // bit i: the face opposite vertex i must stay
 };
 
 }  // namespace

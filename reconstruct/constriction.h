@@ -11,13 +11,24 @@
 
 namespace scanstation {
 
+/// Which removable face goes first.
+enum class ConstrictionCriterion {
+  gamma_indicator,      ///< smallest γ-indicator (Definitions 5.1, 5.2), the thesis' rule
+  minimal_area_change,  ///< smallest Expression (4.1), the baseline of §4.3.3 / §5.6
+};
+
 struct ConstrictionOptions {
+  ConstrictionCriterion criterion = ConstrictionCriterion::gamma_indicator;
   /// Further removals once every point is on the boundary (§5.3: "there is no
   /// general rule telling how long to continue", e.g. the candlestick).
   std::size_t extra_removals = 0;
   /// Once every point is on the boundary, continue while the smallest
   /// selection key (γ-indicator, or sum of two in 3D) is below this value.
   std::optional<double> until_indicator;
+  /// Constrained constriction (§5.7): faces (#K by D vertex indices, edges in
+  /// 2D, triangles in 3D) that must never be deleted. Each must be a face of
+  /// the Delaunay triangulation (InvalidInput names the first that is not).
+  Eigen::MatrixXi keep;
   /// Fraction of the points on the boundary so far.
   ProgressCallback progress;
 };
@@ -36,6 +47,7 @@ struct Constriction {
   std::vector<int> interior_vertices;
   std::size_t removed_cells = 0;
   bool all_on_boundary = false;
+  std::size_t kept_faces_on_boundary = 0;  ///< of options.keep, how many ended on the boundary
 };
 
 /// Removes boundary cells of the Delaunay complex one at a time, always the

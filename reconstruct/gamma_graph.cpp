@@ -58,6 +58,11 @@ struct GammaTraits<2> {
   }
   // +1 outside the smallest ball touching s, 0 on it, -1 inside.
   static int power_sign(const Simplex& s, const Vec& p) {
+    // |p-m|² - r² = (p-a)·(p-b); the double is trusted far from 0 (a filter
+    // with a 4500 ulp margin), else the exact predicate decides.
+    const Vec u = p - s[0], v = p - s[1];
+    const double dot = u.dot(v);
+    if (std::abs(dot) > 1e-12 * u.norm() * v.norm()) return dot > 0 ? 1 : -1;
     return -static_cast<int>(CGAL::side_of_bounded_circle(cg(s[0]), cg(s[1]), cg(p)));
   }
   static OnPlane on_plane(const Simplex& s, const Vec& p) {
@@ -136,7 +141,8 @@ struct Pencil {
     double mag = u < 1.0 ? u * u / (std::sqrt(1.0 + u * u) * (std::sqrt(1.0 + u * u) + 1.0))
                          : 1.0 - 1.0 / std::sqrt(1.0 + u * u);  // = 1 - r/R
     if (!(mag == mag)) mag = 1.0;
-    mag = std::clamp(mag, std::numeric_limits<double>::denorm_min(), std::nextafter(1.0, 0.0));
+    constexpr double kBelowOne = 1.0 - 0x1p-53;  // largest double < 1; the lower bound is normal (no denormal stalls)
+    mag = std::clamp(mag, std::numeric_limits<double>::min(), kBelowOne);
     return side * pw * mag;
   }
 
@@ -433,6 +439,20 @@ struct Ball {
   double radius;
 };
 
+// A query region: the intersection of balls and slabs lo < n·x < hi; nodes
+// whose box misses it are skipped; children nearer `seed` go first.
+template <int D>
+struct Region {
+  using Vec = typename GammaTraits<D>::Vec;
+  struct Slab {
+    Vec n;
+    double lo, hi;
+  };
+  std::vector<Ball<D>> balls;
+  std::vector<Slab> slabs;
+  Vec seed;
+};
+
 template <int D>
 class KdTree {
  public:
@@ -440,14 +460,15 @@ class KdTree {
   explicit KdTree(const std::vector<Vec>& P) : P_(P), order_(P.size()) {
     std::iota(order_.begin(), order_.end(), 0);
     if (!order_.empty()) build(0, static_cast<int>(order_.size()), 0);
+    lo_ = hi_ = P.empty() ? Vec::Zero() : P[0];
+    for (const Vec& p : P) lo_ = lo_.cwiseMin(p), hi_ = hi_.cwiseMax(p);
   }
   // Calls visit(i) for (at least) every point lying in all `balls`; stops
   // when visit returns false. Returns false if stopped.
   template <typename Visit>
-  bool visit(const std::vector<Ball<D>>& balls, Visit&& visit) const {
+  bool visit(const Region<D>& region, Visit&& visit) const {
     if (order_.empty()) return true;
-    Vec lo = Vec::Constant(-std::numeric_limits<double>::infinity()), hi = -lo;
-    return walk(0, static_cast<int>(order_.size()), 0, lo, hi, balls, visit);
+    return walk(0, static_cast<int>(order_.size()), 0, lo_, hi_, region, visit);
   }
 
  private:
@@ -459,15 +480,20 @@ class KdTree {
     build(lo, mid, depth + 1);
     build(mid + 1, hi, depth + 1);
   }
-  static bool meets(const Vec& lo, const Vec& hi, const std::vector<Ball<D>>& balls) {
-    for (const auto& b : balls) {
+  static bool meets(const Vec& lo, const Vec& hi, const Region<D>& region) {
+    for (const auto& b : region.balls) {
       const Vec q = b.centre.cwiseMax(lo).cwiseMin(hi);
       if ((q - b.centre).squaredNorm() > b.radius * b.radius * (1 + 1e-9)) return false;
+    }
+    for (const auto& s : region.slabs) {
+      const double c = s.n.dot(0.5 * (lo + hi)), e = s.n.cwiseAbs().dot(0.5 * (hi - lo));
+      const double slack = 1e-9 * (std::abs(c) + e + std::abs(s.lo) + std::abs(s.hi));
+      if (c + e < s.lo - slack || c - e > s.hi + slack) return false;
     }
     return true;
   }
   template <typename Visit>
-  bool walk(int lo, int hi, int depth, const Vec& blo, const Vec& bhi, const std::vector<Ball<D>>& balls,
+  bool walk(int lo, int hi, int depth, const Vec& blo, const Vec& bhi, const Region<D>& balls,
             Visit& visit) const {
     if (!meets(blo, bhi, balls)) return true;
     if (hi - lo <= 8) {
@@ -479,7 +505,7 @@ class KdTree {
     if (!visit(m)) return false;
     Vec left_hi = bhi, right_lo = blo;
     left_hi[axis] = right_lo[axis] = P_[m][axis];
-    const bool left_first = balls.empty() || balls.front().centre[axis] < P_[m][axis];
+    const bool left_first = balls.seed[axis] < P_[m][axis];
     if (left_first)
       return walk(lo, mid, depth + 1, blo, left_hi, balls, visit) &&
              walk(mid + 1, hi, depth + 1, right_lo, bhi, balls, visit);
@@ -488,6 +514,7 @@ class KdTree {
   }
   const std::vector<Vec>& P_;
   std::vector<int> order_;
+  Vec lo_, hi_;  // bounding box of all points
 };
 
 // Exact profile of s when c'1 < 0 and c'1 ≥ floor, else nullopt.
@@ -514,8 +541,11 @@ std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree,
   }
   const double R = pencil.r / (1.0 - f), offset = std::sqrt(std::max(0.0, R * R - pencil.r * pencil.r));
   const Ball<D> towards_a{pencil.m + offset * pencil.n, R}, towards_b{pencil.m - offset * pencil.n, R};
+  // The lens lies in the smallest ball and in the slab |n·(x-m)| < R - offset.
+  const double c = pencil.n.dot(pencil.m), w = R - offset;
+  const Region<D> lens{{Ball<D>{pencil.m, pencil.r}, towards_a, towards_b}, {{pencil.n, c - w, c + w}}, pencil.m};
   Profile probe;
-  const bool lens_empty = tree.visit({towards_a, towards_b}, [&](int i) {
+  const bool lens_empty = tree.visit(lens, [&](int i) {
     if (own(i)) return true;
     probe = Profile{};
     pencil.add(probe, i, in.P[i]);
@@ -531,11 +561,12 @@ std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree,
     return Ball<D>{pencil.m + (t < 0 ? -off : off) * pencil.n, Rt};
   };
   for (int side : {1, -1}) {
-    std::vector<Ball<D>> search{side > 0 ? towards_a : towards_b};
+    const double inf = std::numeric_limits<double>::infinity();
+    Region<D> search{{side > 0 ? towards_a : towards_b}, {{pencil.n, side > 0 ? c : -inf, side > 0 ? inf : c}}, pencil.m};
     tree.visit(search, [&](int i) {
       if (own(i)) return true;
       pencil.add(pr, i, in.P[i]);
-      search[0] = ball_at(side > 0 ? std::min(pr.hi, f) : std::max(pr.lo, -f));
+      search.balls[0] = ball_at(side > 0 ? std::min(pr.hi, f) : std::max(pr.lo, -f));
       return true;
     });
   }

@@ -4,7 +4,9 @@
 #include "core/describe.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "core/io/index_list.h"
 #include "core/io/number_text.h"
+#include "core/io/vtk.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/boundary_svg.h"
 
@@ -44,6 +46,16 @@ class ReconstructCommand final : public Command {
                      "When constriction locks (§5.4): auto (lower c0 from -0.1 to -1 until every point is on the "
                      "boundary), off, or a fixed c0 in [-1, 0)")
         ->capture_default_str();
+    cli_->add_option("--method", method_,
+                     "gamma: smallest γ-indicator first (thesis Ch. 5); min-area-change: Expression (4.1) (§4.3.3)")
+        ->check(CLI::IsMember({"gamma", "min-area-change"}))
+        ->capture_default_str();
+    cli_->add_option("--keep", keep_,
+                     "Faces that must stay on the boundary (§5.7): a text file, one face per line as 0-based indices "
+                     "into the input points (i j in 2D, i j k in 3D); they must be Delaunay faces");
+    cli_->add_option("--interior", interior_,
+                     "Write the triangulation of the enclosed region (§5.8): .vtk (tetrahedra or triangles), or in 2D "
+                     "any mesh format");
     cli_->add_option("--svg", svg_, "2D: draw the Delaunay graph, removed triangles and boundary (Fig. 5.2)");
     cli_->footer("Output vertices are the distinct input points, bit for bit; duplicates are merged and counted.");
   }
@@ -52,13 +64,16 @@ class ReconstructCommand final : public Command {
     io::check_writable(output_, context.overwrite);
     if (svg_) io::check_writable(*svg_, context.overwrite);
     options_.constriction.until_indicator = until_;
+    if (method_ == "min-area-change") options_.constriction.criterion = ConstrictionCriterion::minimal_area_change;
     configure_augmentation();
+    if (interior_) io::check_writable(*interior_, context.overwrite);
     StageTimer read_timer(context.report, "read");
     const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
     context.progress.finish();
     read_timer.stop();
     options_.constriction.progress = context.progress.stage("constrict");
     const io::WriteOptions write{std::nullopt, std::nullopt, context.overwrite};
+    if (keep_) options_.constriction.keep = io::read_index_list(*keep_, cloud.dimension == 2 ? 2 : 3);
     nlohmann::json& result = context.report["result"];
     if (cloud.dimension == 2) {
       if (svg_ && io::resolve_format(*svg_, std::nullopt) != io::FileFormat::svg)
@@ -69,9 +84,11 @@ class ReconstructCommand final : public Command {
       StageTimer write_timer(context.report, "write");
       io::write_polygon(output_, r.polygon, write);
       if (svg_) io::write_file_atomically(*svg_, boundary_svg(r), context.overwrite);
+      if (interior_) write_interior_2d(r, write);
       result = statistics_json(r.statistics);
       result["boundary"] = describe(r.polygon);
       result["area"] = r.statistics.enclosed_measure;
+      result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.polygon.size()) + "-gon");
     } else {
       if (svg_) throw InvalidInput("--svg draws 2D results; the input has three coordinates");
@@ -80,14 +97,37 @@ class ReconstructCommand final : public Command {
       record_times(context, r.statistics);
       StageTimer write_timer(context.report, "write");
       io::write_mesh(output_, r.mesh, write);
+      if (interior_) {
+        if (r.statistics.carved > 0)
+          throw InvalidInput("--interior: augmentation carved tetrahedra that overlap the Delaunay cells, so no "
+                             "interior triangulation is available (use --augment off to get one)");
+        if (interior_->extension() != ".vtk")
+          throw InvalidInput("--interior " + interior_->string() + ": 3D interiors are tetrahedra, written as .vtk");
+        io::write_file_atomically(*interior_, io::write_vtk_cells(r.mesh.vertices.positions, r.interior),
+                                  context.overwrite);
+      }
       result = statistics_json(r.statistics);
       result["boundary"] = describe(r.mesh);
       result["volume"] = r.statistics.enclosed_measure;
+      result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.mesh.face_count()) + " triangles");
     }
   }
 
  private:
+  void write_interior_2d(const CurveReconstruction& r, const io::WriteOptions& write) const {
+    Eigen::MatrixX3d points = Eigen::MatrixX3d::Zero(r.points.rows(), 3);
+    points.leftCols(2) = r.points;
+    if (interior_->extension() == ".vtk") {
+      io::write_file_atomically(*interior_, io::write_vtk_cells(points, r.interior), write.overwrite);
+      return;
+    }
+    TriangleMesh mesh;
+    mesh.vertices.positions = points;
+    mesh.faces = r.interior;
+    io::write_mesh(*interior_, mesh, write);
+  }
+
   void configure_augmentation() {
     if (augment_ == "auto") return;
     if (augment_ == "off") {
@@ -123,6 +163,8 @@ class ReconstructCommand final : public Command {
   std::optional<std::filesystem::path> svg_;
   ReconstructionOptions options_;
   std::string augment_ = "auto";
+  std::string method_ = "gamma";
+  std::optional<std::filesystem::path> keep_, interior_;
 };
 
 }  // namespace

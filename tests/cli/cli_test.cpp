@@ -187,6 +187,34 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
   EXPECT_THAT(r.err, testing::HasSubstr(".svg"));
 }
 
+TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
+  ScratchFolder dir;
+  const std::string cow = path(test::cgal_data("meshes/cow.off"));
+  Outcome r = scanstation("reconstruct " + cow + " -o " + path(dir / "a.off") + " --augment off --interior " +
+                          path(dir / "a.vtk") + " --report " + path(dir / "a.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto report = nlohmann::json::parse(slurp(dir / "a.json"));
+  EXPECT_EQ(report["result"]["all_on_boundary"], false);
+  EXPECT_THAT(r.out, testing::HasSubstr("locked"));
+  EXPECT_THAT(slurp(dir / "a.vtk"), testing::HasSubstr("CELL_TYPES"));
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "b.off") + " --report " + path(dir / "b.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = nlohmann::json::parse(slurp(dir / "b.json"));
+  EXPECT_EQ(report["result"]["all_on_boundary"], true);
+  EXPECT_LT(report["result"]["c0_used"].get<double>(), 0.0);
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["simple"], true);
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "c.off") + " --method min-area-change");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --method voodoo").exit_code, 1);
+  EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --augment 0.5").exit_code, 1);
+  {
+    std::ofstream(dir / "keep.txt") << "# faces\n0 1 x\n";
+  }
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "keep.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("keep.txt:2"));
+}
+
 TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
   ScratchFolder dir;
   Outcome r = scanstation("demo -o " + path(dir / "a"));

@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <numbers>
+#include <set>
 
 namespace scanstation {
 namespace {
@@ -165,6 +166,74 @@ TEST(Constriction3, RealCgalMeshes) {
     EXPECT_TRUE(r.statistics.all_on_boundary) << name;
     EXPECT_GT(recall, 0.15) << name;
   }
+}
+
+TEST(Constriction3, MinimalAreaChangeBaselineGivesValidBoundaries) {
+  ReconstructionOptions options;
+  options.constriction.criterion = ConstrictionCriterion::minimal_area_change;
+  for (const std::string name : {"cactus", "spool", "cow"}) {
+    const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/" + name + ".off"));
+    const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions, options);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << name;
+    expect_valid_surface(r, name + " (minimal area change)");
+  }
+}
+
+// §5.7: faces asked to stay are never deleted: each is still a face of a
+// kept tetrahedron; keeping the true faces must raise the recall.
+TEST(Constriction3, ConstrainedConstrictionNeverDeletesKeptFaces) {
+  const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/spool.off"));
+  const SurfaceReconstruction plain = reconstruct_surface(truth.vertices.positions);
+  // The true faces that are Delaunay faces (faces of some Delaunay cell).
+  std::set<std::array<int, 3>> delaunay_faces;
+  const DelaunayComplex<3> dt = delaunay_complex(truth.vertices.positions);
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i < 4; ++i) {
+      std::array<int, 3> f{};
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != i) f[static_cast<std::size_t>(n++)] = dt.cells(c, k);
+      std::sort(f.begin(), f.end());
+      delaunay_faces.insert(f);
+    }
+  std::vector<std::array<int, 3>> keep;
+  for (Eigen::Index f = 0; f < truth.face_count(); ++f) {
+    std::array<int, 3> t{truth.faces(f, 0), truth.faces(f, 1), truth.faces(f, 2)};
+    std::sort(t.begin(), t.end());
+    if (delaunay_faces.count(t)) keep.push_back(t);
+  }
+  ASSERT_GT(keep.size(), truth.face_count() / 2u);
+  ReconstructionOptions options;
+  options.augment = false;
+  options.constriction.keep.resize(static_cast<Eigen::Index>(keep.size()), 3);
+  for (std::size_t k = 0; k < keep.size(); ++k)
+    options.constriction.keep.row(static_cast<Eigen::Index>(k)) << keep[k][0], keep[k][1], keep[k][2];
+  const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions, options);
+  expect_valid_surface(r, "spool, constrained");
+  std::set<std::array<int, 3>> present;
+  for (Eigen::Index t = 0; t < r.interior.rows(); ++t)
+    for (int i = 0; i < 4; ++i) {
+      std::array<int, 3> f{};
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != i) f[static_cast<std::size_t>(n++)] = r.interior(t, k);
+      std::sort(f.begin(), f.end());
+      present.insert(f);
+    }
+  for (const auto& f : keep) EXPECT_TRUE(present.count(f)) << f[0] << " " << f[1] << " " << f[2];
+  EXPECT_GT(triangle_recall(truth.faces, r.mesh.faces), triangle_recall(truth.faces, plain.mesh.faces));
+  EXPECT_EQ(r.statistics.kept_faces_on_boundary,
+            static_cast<std::size_t>(std::count_if(keep.begin(), keep.end(), [&](const std::array<int, 3>& f) {
+              for (Eigen::Index g = 0; g < r.mesh.face_count(); ++g) {
+                std::array<int, 3> t{r.mesh.faces(g, 0), r.mesh.faces(g, 1), r.mesh.faces(g, 2)};
+                std::sort(t.begin(), t.end());
+                if (t == f) return true;
+              }
+              return false;
+            })));
+  Eigen::MatrixXi not_delaunay(1, 3);
+  not_delaunay << 0, 1, 2;
+  options.constriction.keep = not_delaunay;
+  if (!delaunay_faces.count({0, 1, 2}))
+    test::expect_error<InvalidInput>([&] { reconstruct_surface(truth.vertices.positions, options); }, {"Delaunay"});
 }
 
 TEST(Constriction2, ChaliceSilhouetteGivesASimplePolygonThroughAllPoints) {
