@@ -19,13 +19,13 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 // Distinct rows of P (first occurrences, input order), the count dropped,
-// and for each input row its distinct row.
+// for each input row its distinct row, and for each distinct row its input row.
 template <int D>
 Eigen::Matrix<double, Eigen::Dynamic, D> distinct(const Eigen::Matrix<double, Eigen::Dynamic, D>& P,
-                                                  Eigen::Index& duplicates, std::vector<Eigen::Index>& map) {
+                                                  Eigen::Index& duplicates, std::vector<Eigen::Index>& map,
+                                                  std::vector<Eigen::Index>& first) {
   Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(P.rows(), 3);
   padded.leftCols(D) = P;
-  std::vector<Eigen::Index> first;
   duplicates = unique_points(padded, first, map);
   Eigen::Matrix<double, Eigen::Dynamic, D> out(static_cast<Eigen::Index>(first.size()), D);
   for (std::size_t k = 0; k < first.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = P.row(first[k]);
@@ -90,7 +90,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   BoundaryStatistics& s = out.statistics;
   s.input_points = points.rows();
   std::vector<Eigen::Index> map;
-  const Eigen::MatrixX3d P = distinct<3>(points, s.duplicates_merged, map);
+  const Eigen::MatrixX3d P = distinct<3>(points, s.duplicates_merged, map, out.source);
   const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
@@ -129,7 +129,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   BoundaryStatistics& s = out.statistics;
   s.input_points = points.rows();
   std::vector<Eigen::Index> map;
-  out.points = distinct<2>(points, s.duplicates_merged, map);
+  out.points = distinct<2>(points, s.duplicates_merged, map, out.source);
   const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();

@@ -44,8 +44,10 @@ struct BoundaryStatistics {
 /// interior   #T by 4 kept tetrahedra (indices into mesh vertices): a
 ///            tetrahedralization of the enclosed solid (§5.8); empty when
 ///            augmentation carved (its tetrahedra overlap Delaunay cells)
+/// source     #V: the input row each mesh vertex came from
 struct SurfaceReconstruction {
   TriangleMesh mesh;
+  std::vector<Eigen::Index> source;
   Eigen::MatrixX4i interior;
   BoundaryStatistics statistics;
 };
@@ -56,8 +58,10 @@ struct SurfaceReconstruction {
 ///           into `points`
 /// interior  #T by 3 kept triangles (indices into `points`)
 /// delaunay  all Delaunay triangles, kept and removed (for pictures)
+/// source    #points: the input row each distinct point came from
 struct CurveReconstruction {
   Eigen::MatrixX2d points;
+  std::vector<Eigen::Index> source;
   Polygon2 polygon;
   std::vector<int> order;
   Eigen::MatrixX3i interior;

@@ -1,1 +1,191 @@
 #include "reconstruct/geometric_graphs.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/unique_points.h"
+#include "reconstruct/gamma_graph.h"
+
+namespace scanstation {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Edge = std::array<int, 2>;
+
+// Distinct points and the Delaunay edges between them, in caller indices.
+struct Delaunay {
+  std::vector<K::Point_2> P;  // indexed by caller row; only `rows` are used
+  std::vector<int> rows;      // first occurrences
+  std::vector<Edge> edges;    // i < j, caller rows
+  std::vector<Edge> hull;     // edges on the convex hull
+};
+
+Delaunay delaunay(const Eigen::MatrixX2d& V) {
+  if (!V.allFinite()) throw InvalidInput("geometric graphs: the point set holds a non-finite coordinate");
+  Eigen::MatrixX3d V3 = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  V3.leftCols(2) = V;
+  std::vector<Eigen::Index> first, map;
+  unique_points(V3, first, map);
+  Delaunay d;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) d.P.emplace_back(V(i, 0), V(i, 1));
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+  using DT = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
+  std::vector<std::pair<K::Point_2, int>> pts;
+  for (Eigen::Index f : first) d.rows.push_back(static_cast<int>(f)), pts.emplace_back(d.P[f], static_cast<int>(f));
+  DT dt(pts.begin(), pts.end());
+  const auto edge = [](int a, int b) { return Edge{std::min(a, b), std::max(a, b)}; };
+  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+    const auto f = e->first;
+    const int i = e->second;
+    const Edge ij = edge(f->vertex(DT::cw(i))->info(), f->vertex(DT::ccw(i))->info());
+    d.edges.push_back(ij);
+    if (dt.dimension() < 2 || dt.is_infinite(f) || dt.is_infinite(dt.mirror_vertex(f, i))) d.hull.push_back(ij);
+  }
+  std::sort(d.edges.begin(), d.edges.end());
+  std::sort(d.hull.begin(), d.hull.end());
+  return d;
+}
+
+Eigen::MatrixX2i to_matrix(std::vector<Edge> E) {
+  std::sort(E.begin(), E.end());
+  E.erase(std::unique(E.begin(), E.end()), E.end());
+  Eigen::MatrixX2i M(E.size(), 2);
+  for (std::size_t i = 0; i < E.size(); ++i) M.row(static_cast<Eigen::Index>(i)) << E[i][0], E[i][1];
+  return M;
+}
+
+// Strict total order on edges: exact length, then indices.
+struct ShorterEdge {
+  const std::vector<K::Point_2>& P;
+  bool operator()(const Edge& a, const Edge& b) const {
+    const auto c = K().compare_distance_2_object()(P[a[0]], P[a[1]], P[b[0]], P[b[1]]);
+    return c == CGAL::SMALLER || (c == CGAL::EQUAL && a < b);
+  }
+};
+
+int find(std::vector<int>& parent, int x) { return parent[x] == x ? x : parent[x] = find(parent, parent[x]); }
+
+}  // namespace
+
+Eigen::MatrixX2i delaunay_edges(const Eigen::MatrixX2d& V) { return to_matrix(delaunay(V).edges); }
+
+Eigen::MatrixX2i convex_hull_edges(const Eigen::MatrixX2d& V) { return to_matrix(delaunay(V).hull); }
+
+Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX2d& V) {
+  // Candidates: every edge with an empty disc (Delaunay plus co-circular
+  // chords); Gabriel iff the smallest disc (t = 0) is empty: lo ≤ 0 ≤ hi,
+  // whose signs are exact predicates (side_of_bounded_circle).
+  Eigen::MatrixX2i E;
+  Eigen::MatrixX2d LH;
+  gamma_pencil_bounds(V, E, LH);
+  std::vector<Edge> out;
+  for (Eigen::Index i = 0; i < E.rows(); ++i)
+    if (LH(i, 0) <= 0 && LH(i, 1) >= 0) out.push_back({E(i, 0), E(i, 1)});
+  return to_matrix(out);
+}
+
+Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V) {
+  const Delaunay d = delaunay(V);
+  const Eigen::MatrixX2i G = gabriel_graph(V);  // RNG ⊆ GG
+  const auto cmp = K().compare_distance_2_object();
+  std::vector<Edge> out;
+  for (Eigen::Index e = 0; e < G.rows(); ++e) {
+    const K::Point_2 &a = d.P[G(e, 0)], &b = d.P[G(e, 1)];
+    const bool empty = std::none_of(d.rows.begin(), d.rows.end(), [&](int k) {
+      return cmp(a, d.P[k], a, b) == CGAL::SMALLER && cmp(b, d.P[k], b, a) == CGAL::SMALLER;
+    });
+    if (empty) out.push_back({G(e, 0), G(e, 1)});
+  }
+  return to_matrix(out);
+}
+
+Eigen::MatrixX2i euclidean_minimum_spanning_tree(const Eigen::MatrixX2d& V) {
+  Delaunay d = delaunay(V);
+  std::sort(d.edges.begin(), d.edges.end(), ShorterEdge{d.P});
+  std::vector<int> parent(d.P.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<Edge> out;
+  for (const Edge& e : d.edges) {
+    const int a = find(parent, e[0]), b = find(parent, e[1]);
+    if (a != b) parent[a] = b, out.push_back(e);
+  }
+  return to_matrix(out);
+}
+
+Eigen::MatrixX2i nearest_neighbor_graph(const Eigen::MatrixX2d& V) {
+  const Delaunay d = delaunay(V);  // a nearest neighbour is a Delaunay neighbour
+  std::vector<Edge> best(d.P.size(), Edge{-1, -1});
+  const ShorterEdge shorter{d.P};
+  for (const Edge& e : d.edges)
+    for (int v : e)
+      if (best[v][0] < 0 || shorter(e, best[v])) best[v] = e;
+  std::vector<Edge> out;
+  for (int v : d.rows)
+    if (best[v][0] >= 0) out.push_back(best[v]);
+  return to_matrix(out);
+}
+
+Eigen::MatrixX2i closest_pairs(const Eigen::MatrixX2d& V) {
+  const Delaunay d = delaunay(V);  // a closest pair is a Delaunay edge
+  if (d.edges.empty()) return Eigen::MatrixX2i(0, 2);
+  const Edge shortest = *std::min_element(d.edges.begin(), d.edges.end(), ShorterEdge{d.P});
+  const auto cmp = K().compare_distance_2_object();
+  std::vector<Edge> out;
+  for (const Edge& e : d.edges)
+    if (cmp(d.P[e[0]], d.P[e[1]], d.P[shortest[0]], d.P[shortest[1]]) == CGAL::EQUAL) out.push_back(e);
+  return to_matrix(out);
+}
+
+Eigen::MatrixX2i alpha_shape_edges(const Eigen::MatrixX2d& V, double a) {
+  if (!(a <= 0))
+    throw InvalidInput("alpha_shape_edges: a = " + std::to_string(a) +
+                       " > 0 (the furthest-point α-shape) is not supported; use a ≤ 0");
+  if (a == 0) return convex_hull_edges(V);
+  Eigen::MatrixX2i E;
+  Eigen::MatrixX2d LH;
+  gamma_pencil_bounds(V, E, LH);
+  std::vector<Edge> out;
+  for (Eigen::Index i = 0; i < E.rows(); ++i) {
+    const double r = 0.5 * (V.row(E(i, 0)) - V.row(E(i, 1))).norm();
+    const double t = 1.0 - r * std::abs(a);  // the disc of radius 1/|a| has |t| = 1 - r|a|
+    if (t < 0) continue;                     // 1/|a| < r: no such disc
+    if ((LH(i, 0) <= t && t <= LH(i, 1)) || (LH(i, 0) <= -t && -t <= LH(i, 1))) out.push_back({E(i, 0), E(i, 1)});
+  }
+  return to_matrix(out);
+}
+
+Eigen::MatrixX2i beta_skeleton(const Eigen::MatrixX2d& V, double b, BetaNeighborhood kind) {
+  if (!(b >= -1 && b <= 1)) throw InvalidInput("beta_skeleton: b = " + std::to_string(b) + " lies outside [-1, 1]");
+  if (kind == BetaNeighborhood::circle || b <= 0) return gamma_graph(V, b, b);  // N_βc(b) = N_γ(b,b)
+  if (b == 0.5) return relative_neighborhood_graph(V);
+  const Delaunay d = delaunay(V);
+  const Eigen::MatrixX2i G = gabriel_graph(V);  // the lune holds the Gabriel disc
+  std::vector<Edge> out;
+  for (Eigen::Index e = 0; e < G.rows(); ++e) {
+    const Eigen::Vector2d p = V.row(G(e, 0)), q = V.row(G(e, 1));
+    const double len = (q - p).norm();
+    const auto in_lune = [&](const Eigen::Vector2d& x) {
+      if (b == 1) return (x - p).dot(q - p) > 0 && (x - q).dot(p - q) > 0;  // infinite strip
+      const double R = len / (2 * (1 - b));
+      const Eigen::Vector2d cp = p + (q - p) / (2 * (1 - b)), cq = q + (p - q) / (2 * (1 - b));
+      return (x - cp).squaredNorm() < R * R && (x - cq).squaredNorm() < R * R;
+    };
+    const bool empty = std::none_of(d.rows.begin(), d.rows.end(), [&](int k) {
+      return k != G(e, 0) && k != G(e, 1) && in_lune(V.row(k).transpose());
+    });
+    if (empty) out.push_back({G(e, 0), G(e, 1)});
+  }
+  return to_matrix(out);
+}
+
+}  // namespace scanstation

@@ -1,1 +1,65 @@
+// The 2D geometric graphs of Veltkamp's chapter 2, built from one Delaunay
+// triangulation where the theory allows (all are subgraphs of DT except the
+// β-skeletons with b < 0), so that CP ⊆ NNG ⊆ EMST ⊆ RNG ⊆ GG ⊆ DT.
+//
+// Every function takes
+//   V  #V by 2 positions
+// and returns
+//   E  #E by 2 edges, i < j, rows sorted lexicographically.
+// Duplicate positions are merged: the first occurrence takes part, later
+// copies are isolated. Decisions use exact predicates (CGAL Epick) unless a
+// function says otherwise. Non-finite input throws scanstation::InvalidInput.
 #pragma once
+
+#include <Eigen/Core>
+
+namespace scanstation {
+
+/// Definition 2.11. Edges of one Delaunay triangulation (CGAL's choice when
+/// more than 3 points are co-circular; γ([-1,1],[0,1]) has all chords then).
+Eigen::MatrixX2i delaunay_edges(const Eigen::MatrixX2d& V);
+
+/// Definition 2.10: edges with no vertex in one open half-plane nor on the
+/// edge; collinear hull points give consecutive edges. Collinear input gives
+/// the chain of consecutive points.
+Eigen::MatrixX2i convex_hull_edges(const Eigen::MatrixX2d& V);
+
+/// Definition 2.9: no vertex strictly inside the circle with diameter ij.
+/// Includes crossing diameters of an empty circle in degenerate input.
+Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX2d& V);
+
+/// Definition 2.8: no vertex k with max(|ik|, |jk|) < |ij| (exact distance
+/// comparisons). Gabriel edges screened in O(N) each: O(N²) worst case.
+Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V);
+
+/// Definition 2.5: Kruskal on the Delaunay edges; lengths compared exactly,
+/// ties broken by (i, j) so the tree is deterministic. A forest never occurs
+/// (the Delaunay graph is connected).
+Eigen::MatrixX2i euclidean_minimum_spanning_tree(const Eigen::MatrixX2d& V);
+
+/// Definition 2.4: each vertex joined to one nearest vertex, the one with the
+/// smallest index among equally near ones (consistent with the EMST order, so
+/// NNG ⊆ EMST always holds).
+Eigen::MatrixX2i nearest_neighbor_graph(const Eigen::MatrixX2d& V);
+
+/// Definition 2.3: every pair at the minimum distance.
+Eigen::MatrixX2i closest_pairs(const Eigen::MatrixX2d& V);
+
+/// Definitions 2.12–2.14 for a ≤ 0: edges ij with an empty open generalized
+/// disc of radius 1/|a| touching i and j (a = 0: half-plane, the convex hull).
+/// The radius test is a double construction (t = 1 - r|a| against the pencil
+/// bounds of gamma_pencil_bounds). a > 0 (the furthest-point α-shape) throws
+/// InvalidInput: not implemented. Note: the thesis text says a ≥ 0 gives the
+/// closest-point subgraph; with Definition 2.12 it is a ≤ 0 (empty discs).
+Eigen::MatrixX2i alpha_shape_edges(const Eigen::MatrixX2d& V, double a);
+
+enum class BetaNeighborhood { lune, circle };
+
+/// Definitions 2.15 (circle, = γ(b,b)) and 2.16 (lune), b ∈ [-1,1]. For b ≤ 0
+/// both are the lens N_βc(b). Lune with b > 0: Gabriel edges whose lune (two
+/// discs of radius |ij|/(2(1-b)) centred on the line ij; b = 1 the open
+/// infinite strip) is empty, membership tested in doubles except b = 1/2
+/// (relative neighbourhood, exact) and b = 0 (Gabriel, exact).
+Eigen::MatrixX2i beta_skeleton(const Eigen::MatrixX2d& V, double b, BetaNeighborhood kind);
+
+}  // namespace scanstation

@@ -1,0 +1,112 @@
+// Quality and time against CGAL's Advancing Front Surface Reconstruction,
+// the closest existing peer, on the vertices of real closed genus-0 meshes
+// (their original triangles are the known answer).
+//
+//   build/bench/afsr_compare [--noise 0.001] MESH.off ...
+//
+// Prints one table row per mesh: time, closed / genus, every point on the
+// boundary, triangle recall — for constriction and for AFSR — and the means.
+#include "core/io/mesh_io.h"
+#include "core/mesh_topology.h"
+#include "core/triangle_recall.h"
+#include "reconstruct/boundary_reconstruction.h"
+#include "sim/random.h"
+
+#include <CGAL/Advancing_front_surface_reconstruction.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace scanstation;
+
+struct Row {
+  double seconds = 0, recall = 0;
+  bool closed = false, all_points = false;
+  long long genus = -1;
+};
+
+Row summarise(const TriangleMesh& truth, const Eigen::MatrixX3i& faces, double seconds) {
+  Row row;
+  row.seconds = seconds;
+  const MeshTopology t = mesh_topology(faces, truth.vertex_count());
+  row.closed = t.closed && t.manifold;
+  row.genus = t.genus.value_or(-1);
+  row.all_points = t.isolated_vertices == 0;
+  row.recall = triangle_recall(truth.faces, faces);
+  return row;
+}
+
+Row constriction(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
+  const auto start = std::chrono::steady_clock::now();
+  const SurfaceReconstruction r = reconstruct_surface(points);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Eigen::MatrixX3i faces = r.mesh.faces;  // back to input numbering (duplicates were merged)
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) faces(f, k) = static_cast<int>(r.source[static_cast<std::size_t>(faces(f, k))]);
+  Row row = summarise(truth, faces, s);
+  row.all_points = r.statistics.all_on_boundary;  // every distinct point
+  return row;
+}
+
+Row advancing_front(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<Kernel::Point_3> cgal;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) cgal.emplace_back(points(i, 0), points(i, 1), points(i, 2));
+  std::vector<std::array<std::size_t, 3>> facets;
+  const auto start = std::chrono::steady_clock::now();
+  CGAL::advancing_front_surface_reconstruction(cgal.begin(), cgal.end(), std::back_inserter(facets));
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Eigen::MatrixX3i F(static_cast<Eigen::Index>(facets.size()), 3);
+  for (std::size_t f = 0; f < facets.size(); ++f)
+    F.row(static_cast<Eigen::Index>(f)) << static_cast<int>(facets[f][0]), static_cast<int>(facets[f][1]),
+        static_cast<int>(facets[f][2]);
+  return summarise(truth, F, s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double noise = 0.0;
+  std::vector<std::string> files;
+  for (int a = 1; a < argc; ++a) {
+    if (std::string(argv[a]) == "--noise" && a + 1 < argc) {
+      noise = std::stod(argv[++a]);
+    } else {
+      files.emplace_back(argv[a]);
+    }
+  }
+  std::printf("%-24s %8s | %8s %6s %5s %6s | %8s %6s %5s %6s\n", "mesh", "points", "ours s", "genus0", "all", "recall",
+              "AFSR s", "genus0", "all", "recall");
+  double sum_ours = 0, sum_afsr = 0;
+  int ok_ours = 0, ok_afsr = 0;
+  for (const std::string& file : files) {
+    const TriangleMesh truth = io::read_mesh(file);
+    Eigen::MatrixX3d points = truth.vertices.positions;
+    if (noise > 0) {  // Gaussian noise, sigma = noise × bounding-box diagonal, seeded
+      const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+      sim::Random random(1);
+      for (Eigen::Index i = 0; i < points.rows(); ++i)
+        for (int c = 0; c < 3; ++c) points(i, c) += noise * diagonal * random.normal();
+    }
+    const Row ours = constriction(truth, points), afsr = advancing_front(truth, points);
+    const auto good = [](const Row& r) { return r.closed && r.genus == 0 && r.all_points; };
+    ok_ours += good(ours);
+    ok_afsr += good(afsr);
+    sum_ours += ours.recall;
+    sum_afsr += afsr.recall;
+    const std::string name = std::filesystem::path(file).filename().string();
+    std::printf("%-24s %8lld | %8.3f %6s %5s %6.3f | %8.3f %6s %5s %6.3f\n", name.c_str(),
+                static_cast<long long>(points.rows()), ours.seconds, ours.closed && ours.genus == 0 ? "yes" : "no",
+                ours.all_points ? "yes" : "no", ours.recall, afsr.seconds, afsr.closed && afsr.genus == 0 ? "yes" : "no",
+                afsr.all_points ? "yes" : "no", afsr.recall);
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(files.size(), 1));
+  std::printf("closed genus-0 through all points: ours %d of %zu, AFSR %d of %zu; mean recall: ours %.3f, AFSR %.3f\n",
+              ok_ours, files.size(), ok_afsr, files.size(), sum_ours / n, sum_afsr / n);
+}
