@@ -110,6 +110,11 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
     s.carved = a.carved;
     c.all_on_boundary = c.interior_vertices.empty();
   }
+  if (options.flips) {
+    start = std::chrono::steady_clock::now();
+    s.flips = flip_boundary(P, out.mesh.faces, *options.flips, options.constriction.keep);
+    s.flip_seconds = seconds_since(start);
+  }
   std::vector<Eigen::Index> kept;
   for (std::size_t k = 0; k < c.kept.size(); ++k)
     if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
@@ -117,7 +122,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   for (std::size_t k = 0; k < kept.size(); ++k) {
     out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
   }
-  if (s.carved > 0) out.interior.resize(0, 4);
+  if (s.carved > 0 || s.flips > 0) out.interior.resize(0, 4);
   s.enclosed_measure = enclosed_volume(P, out.mesh.faces);
   fill_statistics(s, dt, c);
   return out;

@@ -6,6 +6,7 @@
 #include "core/polygon.h"
 #include "core/triangle_mesh.h"
 #include "reconstruct/augmentation.h"
+#include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
 
 #include <optional>
@@ -19,6 +20,10 @@ struct ReconstructionOptions {
   /// c0 < 0 (§5.4, 3D); off: keep the locked boundary.
   bool augment = true;
   AugmentationOptions augmentation;
+  /// 3D: once every point is on the boundary, flip edges that lower the
+  /// surface area (O'Rourke's flips, §4.3.2); nullopt: keep constriction's
+  /// triangles as they are.
+  std::optional<FlipCriterion> flips = FlipCriterion::area;
 };
 
 struct BoundaryStatistics {
@@ -33,6 +38,8 @@ struct BoundaryStatistics {
   std::optional<double> c0_used;          ///< the γ([-1,1],[c0,1]) level augmentation reached, if it ran
   std::size_t carved = 0;                 ///< tetrahedra carved by augmentation
   std::size_t kept_faces_on_boundary = 0; ///< of the faces asked to stay (§5.7), how many are on the boundary
+  std::size_t flips = 0;                  ///< edge flips made after constriction
+  double flip_seconds = 0.0;
   double delaunay_seconds = 0.0;
   double constriction_seconds = 0.0;
 };
@@ -43,7 +50,8 @@ struct BoundaryStatistics {
 ///            counter-clockwise seen from outside
 /// interior   #T by 4 kept tetrahedra (indices into mesh vertices): a
 ///            tetrahedralization of the enclosed solid (§5.8); empty when
-///            augmentation carved (its tetrahedra overlap Delaunay cells)
+///            augmentation carved or flips changed the boundary (their
+///            tetrahedra overlap Delaunay cells)
 /// source     #V: the input row each mesh vertex came from
 struct SurfaceReconstruction {
   TriangleMesh mesh;

@@ -93,6 +93,16 @@ struct GammaTraits<3> {
     return static_cast<int>(CGAL::orientation(cg(s[0]), cg(s[1]), cg(s[2]), cg(p)));
   }
   static int power_sign(const Simplex& s, const Vec& p) {
+    // (|p-m|² - r²)·|w|² = |d|²|w|² - |u|² d·(v×w) - |v|² d·(w×u), a polynomial
+    // in coordinate differences: trusted when it clears 1e-12 of the sum of
+    // its terms' magnitudes (forward error < 40 ulp of that sum), else exact.
+    const Vec u = s[1] - s[0], v = s[2] - s[0], d = p - s[0], w = u.cross(v);
+    const Vec vw = v.cross(w), wu = w.cross(u);
+    const double t0 = d.squaredNorm() * w.squaredNorm(), t1 = u.squaredNorm() * d.dot(vw),
+                 t2 = v.squaredNorm() * d.dot(wu);
+    const double val = t0 - t1 - t2;
+    const double mag = t0 + u.squaredNorm() * d.norm() * vw.norm() + v.squaredNorm() * d.norm() * wu.norm();
+    if (std::abs(val) > 1e-12 * mag) return val > 0 ? 1 : -1;
     return -static_cast<int>(CGAL::side_of_bounded_sphere(cg(s[0]), cg(s[1]), cg(s[2]), cg(p)));
   }
   static OnPlane on_plane(const Simplex& s, const Vec& p) {

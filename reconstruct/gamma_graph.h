@@ -91,6 +91,11 @@ Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range)
 /// O(N^k · m) with m the vertices in that ball: at floor = -1 the lens is the
 /// open simplex and this degrades to the O(N^{k+1}) brute force, whose
 /// output is then Θ(N^k) anyway.
+/// Measured (one core, γ(0,-0.5)): 2D uniform N=2000 0.34 s vs 22 s brute
+/// force; 2D noisy circle N=2000 (68k edges) 14 s vs 24 s. 3D has no screen
+/// yet: uniform N=120 0.29 s vs 0.34 s, noisy sphere N=120 (102k triangles)
+/// 4.7 s vs 1.0 s — on surface samples the 3D path is slower than the brute
+/// force (each output triangle pays a full profile search near the sphere).
 void gamma_values(const Eigen::MatrixX2d& V, double floor, Eigen::MatrixX2i& S, Eigen::MatrixX2d& C);
 void gamma_values(const Eigen::MatrixX3d& V, double floor, Eigen::MatrixX3i& S, Eigen::MatrixX2d& C);
 

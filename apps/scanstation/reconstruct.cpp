@@ -26,7 +26,8 @@ nlohmann::json statistics_json(const BoundaryStatistics& s) {
           {"delaunay_cells", s.delaunay_cells},
           {"removed_cells", s.removed_cells},
           {"c0_used", s.c0_used ? nlohmann::json(*s.c0_used) : nlohmann::json(nullptr)},
-          {"carved", s.carved}};
+          {"carved", s.carved},
+          {"flips", s.flips}};
 }
 
 class ReconstructCommand final : public Command {
@@ -46,6 +47,10 @@ class ReconstructCommand final : public Command {
                      "When constriction locks (§5.4): auto (lower c0 from -0.1 to -1 until every point is on the "
                      "boundary), off, or a fixed c0 in [-1, 0)")
         ->capture_default_str();
+    cli_->add_option("--flips", flips_,
+                     "3D, after constriction: area (flip edges while the surface area drops, §4.3.2) or off")
+        ->check(CLI::IsMember({"area", "off"}))
+        ->capture_default_str();
     cli_->add_option("--method", method_,
                      "gamma: smallest γ-indicator first (thesis Ch. 5); min-area-change: Expression (4.1) (§4.3.3)")
         ->check(CLI::IsMember({"gamma", "min-area-change"}))
@@ -64,6 +69,7 @@ class ReconstructCommand final : public Command {
     io::check_writable(output_, context.overwrite);
     if (svg_) io::check_writable(*svg_, context.overwrite);
     options_.constriction.until_indicator = until_;
+    if (flips_ == "off") options_.flips.reset();
     if (method_ == "min-area-change") options_.constriction.criterion = ConstrictionCriterion::minimal_area_change;
     configure_augmentation();
     if (interior_) io::check_writable(*interior_, context.overwrite);
@@ -98,9 +104,9 @@ class ReconstructCommand final : public Command {
       StageTimer write_timer(context.report, "write");
       io::write_mesh(output_, r.mesh, write);
       if (interior_) {
-        if (r.statistics.carved > 0)
-          throw InvalidInput("--interior: augmentation carved tetrahedra that overlap the Delaunay cells, so no "
-                             "interior triangulation is available (use --augment off to get one)");
+        if (r.interior.rows() == 0)
+          throw InvalidInput("--interior: augmentation or flips changed the boundary away from the Delaunay cells, "
+                             "so no interior triangulation is available (use --augment off --flips off)");
         if (interior_->extension() != ".vtk")
           throw InvalidInput("--interior " + interior_->string() + ": 3D interiors are tetrahedra, written as .vtk");
         io::write_file_atomically(*interior_, io::write_vtk_cells(r.mesh.vertices.positions, r.interior),
@@ -143,6 +149,7 @@ class ReconstructCommand final : public Command {
   static void record_times(CommandContext& context, const BoundaryStatistics& s) {
     context.report.add_seconds("delaunay", s.delaunay_seconds);
     context.report.add_seconds("constriction", s.constriction_seconds);
+    if (s.flip_seconds > 0) context.report.add_seconds("flips", s.flip_seconds);
   }
 
   void summarise(const BoundaryStatistics& s, const std::string& shape) const {
@@ -164,6 +171,7 @@ class ReconstructCommand final : public Command {
   ReconstructionOptions options_;
   std::string augment_ = "auto";
   std::string method_ = "gamma";
+  std::string flips_ = "area";
   std::optional<std::filesystem::path> keep_, interior_;
 };
 

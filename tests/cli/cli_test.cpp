@@ -190,7 +190,7 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
 TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   ScratchFolder dir;
   const std::string cow = path(test::cgal_data("meshes/cow.off"));
-  Outcome r = scanstation("reconstruct " + cow + " -o " + path(dir / "a.off") + " --augment off --interior " +
+  Outcome r = scanstation("reconstruct " + cow + " -o " + path(dir / "a.off") + " --augment off --flips off --interior " +
                           path(dir / "a.vtk") + " --report " + path(dir / "a.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto report = nlohmann::json::parse(slurp(dir / "a.json"));

@@ -1,0 +1,28 @@
+// Edge flips on a finished boundary: the vertex set, closedness, genus and
+// simplicity stay; only which triangles join the points changes.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+
+namespace scanstation {
+
+/// What a flip should lower.
+enum class FlipCriterion {
+  area,         ///< the area of the two triangles: O'Rourke's minimal-area flips (thesis §4.3.2)
+  edge_length,  ///< the length of the shared edge: the shorter diagonal
+};
+
+/// points    #P by 3 positions
+/// boundary  (in/out) #F by 3 closed, simple, genus-0 surface, counter-clockwise
+///           from outside
+/// keep      #K by 3 triangles never flipped away (§5.7), may be empty
+/// An edge (a, b) between (a, b, c) and (b, a, d) becomes (c, d) when that
+/// lowers the criterion, (c, d) is not already an edge, the tetrahedron
+/// (a, b, c, d) holds no other point, and the new triangles meet the surface
+/// only in shared vertices and edges (exact tests). Returns the flips made.
+std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
+                          const Eigen::MatrixXi& keep);
+
+}  // namespace scanstation

@@ -1,0 +1,135 @@
+#include "reconstruct/boundary_surface.h"
+
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace scanstation {
+
+namespace {
+Eigen::AlignedBox3d bounds(const Eigen::MatrixX3d& P) {
+  return Eigen::AlignedBox3d(P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose());
+}
+// About two points per grid cell on a surface-like cloud.
+double cell_size(const Eigen::MatrixX3d& P) {
+  const Eigen::Vector3d extent = (P.colwise().maxCoeff() - P.colwise().minCoeff()).transpose();
+  const double area = 2.0 * (extent.x() * extent.y() + extent.y() * extent.z() + extent.z() * extent.x());
+  return std::max(std::sqrt(2.0 * area / static_cast<double>(std::max<Eigen::Index>(P.rows(), 1))), 1e-300);
+}
+}  // namespace
+
+BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary)
+    : P_(P),
+      points_(bounds(P), cell_size(P)),
+      faces_grid_(bounds(P), cell_size(P)),
+      faces_at_(static_cast<std::size_t>(P.rows())),
+      on_boundary_(static_cast<std::size_t>(P.rows()), 0) {
+  cgal_.reserve(static_cast<std::size_t>(P.rows()));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    cgal_.emplace_back(P(i, 0), P(i, 1), P(i, 2));
+    points_.insert(static_cast<int>(i), Eigen::AlignedBox3d(point(static_cast<int>(i)), point(static_cast<int>(i))));
+  }
+  for (Eigen::Index f = 0; f < boundary.rows(); ++f) add_face({boundary(f, 0), boundary(f, 1), boundary(f, 2)});
+}
+
+Eigen::AlignedBox3d BoundarySurface::box(std::initializer_list<int> ids) const {
+  Eigen::AlignedBox3d b;
+  for (const int i : ids) b.extend(point(i));
+  return b;
+}
+
+int BoundarySurface::add_face(const Triangle& t) {
+  const int id = static_cast<int>(faces_.size());
+  faces_.push_back(t);
+  alive_.push_back(1);
+  for (const int v : t) {
+    faces_at_[static_cast<std::size_t>(v)].push_back(id);
+    on_boundary_[static_cast<std::size_t>(v)] = 1;
+  }
+  faces_grid_.insert(id, box({t[0], t[1], t[2]}));
+  return id;
+}
+
+void BoundarySurface::remove_face(int id) {
+  alive_[static_cast<std::size_t>(id)] = 0;
+  const Triangle& t = faces_[static_cast<std::size_t>(id)];
+  faces_grid_.erase(id, box({t[0], t[1], t[2]}));
+  for (const int v : t) {
+    auto& at = faces_at_[static_cast<std::size_t>(v)];
+    at.erase(std::remove(at.begin(), at.end(), id), at.end());
+  }
+}
+
+bool BoundarySurface::has_edge(int u, int v) const {
+  for (const int f : faces_at(u))
+    if (alive(f) && std::find(face(f).begin(), face(f).end(), v) != face(f).end()) return true;
+  return false;
+}
+
+bool BoundarySurface::improper(const Triangle& s, const Triangle& t) const {
+  std::array<int, 3> shared{};
+  int n = 0;
+  for (const int a : s)
+    if (std::find(t.begin(), t.end(), a) != t.end()) shared[static_cast<std::size_t>(n++)] = a;
+  const auto tri = [&](const Triangle& x) { return Kernel::Triangle_3(exact(x[0]), exact(x[1]), exact(x[2])); };
+  const auto other = [&](const Triangle& x, int k) {  // the vertices of x not shared, in order
+    std::array<int, 3> rest{};
+    int m = 0;
+    for (const int a : x)
+      if (std::find(shared.begin(), shared.begin() + n, a) == shared.begin() + n) rest[static_cast<std::size_t>(m++)] = a;
+    return rest[static_cast<std::size_t>(k)];
+  };
+  if (n == 3) return true;
+  if (n == 0) return CGAL::do_intersect(tri(s), tri(t));
+  if (n == 1) {
+    // Two triangles sharing one vertex meet elsewhere iff an edge opposite the
+    // shared vertex meets the other triangle.
+    const Kernel::Segment_3 es(exact(other(s, 0)), exact(other(s, 1))), et(exact(other(t, 0)), exact(other(t, 1)));
+    return CGAL::do_intersect(es, tri(t)) || CGAL::do_intersect(et, tri(s));
+  }
+  // Sharing an edge: they overlap iff coplanar and folded onto one side.
+  const auto &a = exact(shared[0]), &b = exact(shared[1]), &x = exact(other(s, 0)), &y = exact(other(t, 0));
+  return CGAL::orientation(a, b, x, y) == CGAL::COPLANAR && CGAL::coplanar_orientation(a, b, x, y) == CGAL::POSITIVE;
+}
+
+bool BoundarySurface::point_in_tetrahedron(int a, int b, int c, int d) const {
+  const Kernel::Tetrahedron_3 tetra(exact(a), exact(b), exact(c), exact(d));
+  const Eigen::AlignedBox3d region = box({a, b, c, d});
+  bool found = false;
+  points_.visit(region, [&](int q) {
+    // The box test is only a cheap filter; the exact predicate decides.
+    if (found || q == a || q == b || q == c || q == d || !region.contains(point(q))) return;
+    if (!tetra.has_on_unbounded_side(exact(q))) found = true;
+  });
+  return found;
+}
+
+bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const {
+  Eigen::AlignedBox3d region;
+  std::vector<Eigen::AlignedBox3d> boxes;
+  for (const Triangle& t : fresh) {
+    boxes.push_back(box({t[0], t[1], t[2]}));
+    region.extend(boxes.back());
+  }
+  bool meets = false;
+  faces_grid_.visit(region, [&](int g) {
+    if (meets || !alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return;
+    const Triangle& other = face(g);
+    const Eigen::AlignedBox3d other_box = box({other[0], other[1], other[2]});
+    for (std::size_t k = 0; k < fresh.size() && !meets; ++k)
+      if (boxes[k].intersects(other_box) && improper(fresh[k], other)) meets = true;
+  });
+  return meets;
+}
+
+Eigen::MatrixX3i BoundarySurface::boundary() const {
+  std::vector<Triangle> live;
+  for (std::size_t f = 0; f < faces_.size(); ++f)
+    if (alive_[f]) live.push_back(faces_[f]);
+  Eigen::MatrixX3i out(static_cast<Eigen::Index>(live.size()), 3);
+  for (std::size_t f = 0; f < live.size(); ++f) out.row(static_cast<Eigen::Index>(f)) << live[f][0], live[f][1], live[f][2];
+  return out;
+}
+
+}  // namespace scanstation

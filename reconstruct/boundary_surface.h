@@ -1,0 +1,147 @@
+// A closed triangle surface under edit, with the exact geometric tests that
+// keep it simple while constriction's later stages change it (augmentation
+// carves, edge flips): which points lie in a tetrahedron, and whether new
+// triangles meet the surface anywhere but in shared vertices and edges.
+#pragma once
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <unordered_map>
+#include <vector>
+
+namespace scanstation {
+
+// A loose multi-level grid over axis-aligned boxes, for "which points /
+// triangles are near this region": each box lives on the finest level where
+// it spans at most two cells per axis, so long triangles cost no more than
+// small ones. Ids may be reported more than once.
+class BoxGrid {
+ public:
+  BoxGrid(const Eigen::AlignedBox3d& bounds, double cell) : origin_(bounds.min()), cell_(cell) {}
+
+  void insert(int id, const Eigen::AlignedBox3d& box) {
+    const int l = level_of(box);
+    level(l)[key(index(l, box.min()))].push_back(id);
+  }
+  void erase(int id, const Eigen::AlignedBox3d& box) {
+    const int l = level_of(box);
+    auto& v = level(l)[key(index(l, box.min()))];
+    v.erase(std::remove(v.begin(), v.end(), id), v.end());
+  }
+  /// Calls f(id) for (at least) every id whose box may meet `region`.
+  template <typename F>
+  void visit(const Eigen::AlignedBox3d& region, F&& f) const {
+    for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
+      const auto& cells = levels_[static_cast<std::size_t>(l)];
+      if (cells.empty()) continue;
+      // A box is filed under the cell of its minimum corner and reaches at
+      // most one cell size beyond it.
+      Eigen::AlignedBox3d grown = region;
+      grown.min().array() -= size(l);
+      if (span(l, grown) > static_cast<double>(cells.size())) {
+        for (const auto& [key, ids] : cells)
+          for (const int id : ids) f(id);
+      } else {
+        for_cells(l, grown, [&](std::uint64_t k) {
+          if (const auto it = cells.find(k); it != cells.end())
+            for (const int id : it->second) f(id);
+        });
+      }
+    }
+  }
+
+ private:
+  using Cells = std::unordered_map<std::uint64_t, std::vector<int>>;
+  double size(int l) const { return cell_ * static_cast<double>(std::uint64_t{1} << l); }
+  Cells& level(int l) {
+    if (static_cast<int>(levels_.size()) <= l) levels_.resize(static_cast<std::size_t>(l) + 1);
+    return levels_[static_cast<std::size_t>(l)];
+  }
+  int level_of(const Eigen::AlignedBox3d& box) const {
+    const double extent = (box.max() - box.min()).maxCoeff();
+    int l = 0;
+    while (l < 40 && extent > size(l)) ++l;
+    return l;
+  }
+  Eigen::Array3i index(int l, const Eigen::Vector3d& x) const {
+    return ((x - origin_) / size(l)).array().floor().cast<int>();
+  }
+  double span(int l, const Eigen::AlignedBox3d& box) const {
+    return ((index(l, box.max()) - index(l, box.min())).cast<double>() + 1.0).prod();
+  }
+  static std::uint64_t key(const Eigen::Array3i& i) {
+    return (static_cast<std::uint64_t>(i.x() & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(i.y() & 0x1FFFFF) << 21) |
+           static_cast<std::uint64_t>(i.z() & 0x1FFFFF);
+  }
+  template <typename F>
+  void for_cells(int l, const Eigen::AlignedBox3d& box, F&& f) const {
+    const Eigen::Array3i lo = index(l, box.min()), hi = index(l, box.max());
+    for (int x = lo.x(); x <= hi.x(); ++x)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int z = lo.z(); z <= hi.z(); ++z) f(key(Eigen::Array3i(x, y, z)));
+  }
+  Eigen::Vector3d origin_;
+  double cell_;
+  std::vector<Cells> levels_;
+};
+
+/// faces are counter-clockwise seen from outside; ids stay valid (a removed
+/// face is marked dead, new faces get new ids).
+class BoundarySurface {
+ public:
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Triangle = std::array<int, 3>;
+
+  /// P #P by 3 positions; boundary #F by 3 faces
+  BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary);
+
+  int add_face(const Triangle& t);
+  void remove_face(int id);
+
+  const Triangle& face(int id) const { return faces_[static_cast<std::size_t>(id)]; }
+  bool alive(int id) const { return alive_[static_cast<std::size_t>(id)] != 0; }
+  std::size_t face_slots() const { return faces_.size(); }
+  /// Ids of faces that used vertex v at some point (check alive()).
+  const std::vector<int>& faces_at(int v) const { return faces_at_[static_cast<std::size_t>(v)]; }
+  bool on_boundary(int v) const { return on_boundary_[static_cast<std::size_t>(v)] != 0; }
+  /// An alive face holds the edge (u, v).
+  bool has_edge(int u, int v) const;
+
+  Eigen::Vector3d point(int i) const { return P_.row(i).transpose(); }
+  const Kernel::Point_3& exact(int i) const { return cgal_[static_cast<std::size_t>(i)]; }
+  Eigen::AlignedBox3d box(std::initializer_list<int> ids) const;
+
+  /// Exact: the triangles meet anywhere but in the vertices/edges they share.
+  bool improper(const Triangle& s, const Triangle& t) const;
+  /// Exact: some point other than a, b, c, d lies in the closed tetrahedron
+  /// (a, b, c, d), which must not be flat.
+  bool point_in_tetrahedron(int a, int b, int c, int d) const;
+  /// Exact: some alive face other than those in `except` meets one of
+  /// `fresh` improperly.
+  bool meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const;
+  /// Calls f(q) for the points that may lie in `region`.
+  template <typename F>
+  void points_near(const Eigen::AlignedBox3d& region, F&& f) const { points_.visit(region, f); }
+
+  /// The alive faces.
+  Eigen::MatrixX3i boundary() const;
+
+ private:
+  const Eigen::MatrixX3d& P_;
+  std::vector<Kernel::Point_3> cgal_;
+  BoxGrid points_;
+  BoxGrid faces_grid_;
+  std::vector<Triangle> faces_;
+  std::vector<char> alive_;
+  std::vector<std::vector<int>> faces_at_;
+  std::vector<char> on_boundary_;
+};
+
+}  // namespace scanstation
