@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <tuple>
 #include <utility>
 
 namespace scanstation {
@@ -27,10 +28,45 @@ std::pair<int, int> face_with(const BoundarySurface& s, int a, int b) {
   return {-1, -1};
 }
 
+// Edges (a < b) whose flip would lower the area enough, found from the face
+// list alone, so that a surface with none costs one sort and no spatial index.
+std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, double min_gain) {
+  struct Half {
+    int lo, hi, opposite;
+    bool forward;
+    double area;
+  };
+  std::vector<Half> halves;
+  halves.reserve(static_cast<std::size_t>(F.rows()) * 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d p0 = P.row(F(f, 0)), p1 = P.row(F(f, 1)), p2 = P.row(F(f, 2));
+    const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    for (int k = 0; k < 3; ++k) {
+      const int u = F(f, k), v = F(f, (k + 1) % 3);
+      halves.push_back({std::min(u, v), std::max(u, v), F(f, (k + 2) % 3), u < v, a});
+    }
+  }
+  std::sort(halves.begin(), halves.end(), [](const Half& x, const Half& y) {
+    return std::tie(x.lo, x.hi, x.forward) < std::tie(y.lo, y.hi, y.forward);
+  });
+  std::vector<std::pair<int, int>> out;
+  for (std::size_t i = 0; i + 1 < halves.size(); ++i) {
+    const Half &x = halves[i], &y = halves[i + 1];
+    if (x.lo != y.lo || x.hi != y.hi) continue;
+    const Eigen::Vector3d a = P.row(x.lo), b = P.row(x.hi), c = P.row(x.opposite), d = P.row(y.opposite);
+    const double after = 0.5 * ((d - a).cross(c - a).norm() + (b - d).cross(c - d).norm());
+    if (after < (x.area + y.area) * (1.0 - min_gain)) out.emplace_back(x.lo, x.hi);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
-                          const Eigen::MatrixXi& keep) {
+                          const Eigen::MatrixXi& keep, double min_gain) {
+  (void)criterion;
+  std::vector<std::pair<int, int>> first = candidate_edges(points, boundary, min_gain);
+  if (first.empty()) return 0;
   BoundarySurface surface(points, boundary);
   std::vector<Triangle> fixed;
   for (Eigen::Index k = 0; k < keep.rows(); ++k) {
@@ -45,10 +81,7 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     return std::binary_search(fixed.begin(), fixed.end(), t);
   };
 
-  std::deque<std::pair<int, int>> edges;
-  for (Eigen::Index f = 0; f < boundary.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (boundary(f, k) < boundary(f, (k + 1) % 3)) edges.emplace_back(boundary(f, k), boundary(f, (k + 1) % 3));
+  std::deque<std::pair<int, int>> edges(first.begin(), first.end());
   std::size_t flips = 0;
   while (!edges.empty()) {
     const auto [a, b] = edges.front();
@@ -57,11 +90,10 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     const auto [f2, d] = face_with(surface, b, a);
     if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
     const Triangle g1{a, d, c}, g2{d, b, c};
-    const bool by_area = criterion == FlipCriterion::area;
-    const double before = by_area ? area(surface, surface.face(f1)) + area(surface, surface.face(f2))
-                                  : (surface.point(a) - surface.point(b)).squaredNorm();
-    const double after = by_area ? area(surface, g1) + area(surface, g2) : (surface.point(c) - surface.point(d)).squaredNorm();
-    if (!(after < before * (1.0 - 1e-9))) continue;
+    // FlipCriterion::area, the only criterion so far.
+    const double before = area(surface, surface.face(f1)) + area(surface, surface.face(f2));
+    const double after = area(surface, g1) + area(surface, g2);
+    if (!(after < before * (1.0 - min_gain))) continue;
     if (CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), surface.exact(d)) == CGAL::COPLANAR)
       continue;
     if (surface.point_in_tetrahedron(a, b, c, d) || surface.meets_surface({g1, g2}, {f1, f2})) continue;

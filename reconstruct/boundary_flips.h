@@ -10,19 +10,22 @@ namespace scanstation {
 
 /// What a flip should lower.
 enum class FlipCriterion {
-  area,         ///< the area of the two triangles: O'Rourke's minimal-area flips (thesis §4.3.2)
-  edge_length,  ///< the length of the shared edge: the shorter diagonal
+  area,  ///< the area of the two triangles: O'Rourke's minimal-area flips (thesis §4.3.2)
 };
 
 /// points    #P by 3 positions
 /// boundary  (in/out) #F by 3 closed, simple, genus-0 surface, counter-clockwise
 ///           from outside
 /// keep      #K by 3 triangles never flipped away (§5.7), may be empty
+/// min_gain  the relative drop a flip must bring: on a smooth convex patch a
+///           flip into a shallow dent lowers the area by a hair, and such
+///           dents are not the surface; 1e-3 keeps random samples of an
+///           ellipsoid untouched while caps over concavities still go
 /// An edge (a, b) between (a, b, c) and (b, a, d) becomes (c, d) when that
-/// lowers the criterion, (c, d) is not already an edge, the tetrahedron
+/// lowers the criterion by min_gain, (c, d) is not already an edge, the tetrahedron
 /// (a, b, c, d) holds no other point, and the new triangles meet the surface
 /// only in shared vertices and edges (exact tests). Returns the flips made.
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
-                          const Eigen::MatrixXi& keep);
+                          const Eigen::MatrixXi& keep, double min_gain = 1e-3);
 
 }  // namespace scanstation
