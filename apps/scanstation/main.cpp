@@ -29,6 +29,7 @@ int run(int argc, char** argv) {
   std::vector<std::unique_ptr<app::Command>> commands;
   commands.push_back(app::make_convert_command(cli));
   commands.push_back(app::make_info_command(cli));
+  commands.push_back(app::make_graph_command(cli));
   commands.push_back(app::make_reconstruct_command(cli));
   commands.push_back(app::make_demo_command(cli));
 

@@ -42,7 +42,7 @@ TEST(Cli, VersionHelpAndUsageErrors) {
   EXPECT_THAT(r.out, testing::HasSubstr("scanstation "));
   r = scanstation("--help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* sub : {"convert", "info", "reconstruct", "demo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
+  for (const char* sub : {"convert", "info", "graph", "reconstruct", "demo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
   for (const char* sub : {"convert", "info", "demo"}) {
     r = scanstation(std::string(sub) + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub;
@@ -213,6 +213,31 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "keep.txt"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("keep.txt:2"));
+}
+
+TEST(Cli, GraphsIn2DAnd3D) {
+  ScratchFolder dir;
+  {
+    std::ofstream(dir / "square.xy") << "0 0\n4 0\n4 4\n0 4\n1.5 2.2\n";
+  }
+  const std::string square = path(dir / "square.xy");
+  Outcome r = scanstation("graph " + square + " -o " + path(dir / "h.json") + " --gamma -1,1");  // the convex hull
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto graph = nlohmann::json::parse(slurp(dir / "h.json"));
+  EXPECT_EQ(graph["simplices"].size(), 4u);
+  r = scanstation("graph " + square + " -o " + path(dir / "d.json") + " --type delaunay");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "d.json"))["simplices"].size(), 8u);  // 3n − 3 − h = 15 − 3 − 4
+  r = scanstation("graph " + square + " -o " + path(dir / "g.svg") + " --gamma-range -1,1,0,1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(slurp(dir / "g.svg"), testing::HasSubstr("8 edges"));
+  EXPECT_EQ(scanstation("graph " + square + " -o " + path(dir / "x.svg")).exit_code, 1);
+  EXPECT_EQ(scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --type alpha").exit_code, 1);
+  EXPECT_EQ(scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --gamma 1").exit_code, 1);
+  r = scanstation("graph " + path(test::cgal_data("meshes/cactus.off")) + " -o " + path(dir / "c.ply") +
+                  " --type hull --report " + path(dir / "c.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(nlohmann::json::parse(slurp(dir / "c.json"))["result"]["simplices"].get<int>(), 4);
 }
 
 TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {

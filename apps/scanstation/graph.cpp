@@ -1,0 +1,137 @@
+// scanstation graph IN -o OUT: γ-neighborhood graphs (thesis Ch. 3) and the
+// geometric graphs of Ch. 2, drawn (2D SVG) or written (mesh / JSON).
+#include "command.h"
+#include "core/bounding_box.h"
+#include "core/errors.h"
+#include "core/io/file_access.h"
+#include "core/io/mesh_io.h"
+#include "core/svg_canvas.h"
+#include "reconstruct/gamma_graph.h"
+#include "reconstruct/geometric_graphs.h"
+
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <optional>
+
+namespace scanstation::app {
+
+namespace {
+
+Eigen::MatrixX2i named_graph(const std::string& type, const Eigen::MatrixX2d& V, std::optional<double> param) {
+  const auto need = [&](const char* what) {
+    if (!param) throw InvalidInput("--type " + type + " needs --param (" + what + ")");
+    return *param;
+  };
+  const std::map<std::string, std::function<Eigen::MatrixX2i()>> graphs = {
+      {"cp", [&] { return closest_pairs(V); }},
+      {"nng", [&] { return nearest_neighbor_graph(V); }},
+      {"emst", [&] { return euclidean_minimum_spanning_tree(V); }},
+      {"rng", [&] { return relative_neighborhood_graph(V); }},
+      {"gabriel", [&] { return gabriel_graph(V); }},
+      {"hull", [&] { return convex_hull_edges(V); }},
+      {"delaunay", [&] { return delaunay_edges(V); }},
+      {"alpha", [&] { return alpha_shape_edges(V, need("α")); }},
+      {"beta-lune", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::lune); }},
+      {"beta-circle", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::circle); }},
+  };
+  const auto it = graphs.find(type);
+  if (it == graphs.end())
+    throw InvalidInput("--type: expected cp, nng, emst, rng, gabriel, hull, delaunay, alpha, beta-lune or beta-circle; "
+                       "got '" + type + "'");
+  return it->second();
+}
+
+nlohmann::json graph_json(const Eigen::MatrixXi& S, int dimension) {
+  nlohmann::json simplices = nlohmann::json::array();
+  for (Eigen::Index r = 0; r < S.rows(); ++r) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index c = 0; c < S.cols(); ++c) row.push_back(S(r, c));
+    simplices.push_back(row);
+  }
+  return {{"dimension", dimension}, {"simplices", simplices}};
+}
+
+class GraphCommand final : public Command {
+ public:
+  explicit GraphCommand(CLI::App& parent)
+      : Command(parent, "graph", "γ-neighborhood graph (Ch. 3) or a geometric graph of Ch. 2 on a point set") {
+    cli_->add_option("input", input_, "Points: xyz (2 or 3 columns), ply, off, obj, stl vertices")->required();
+    cli_->add_option("-o,--output", output_, "2D: .svg or .json; 3D: a mesh (.ply, .obj, .off, ...) or .json")
+        ->required();
+    auto* gamma = cli_->add_option("--gamma", gamma_, "γ(c0,c1), Definition 3.2: c0,c1 with |c0| ≤ |c1|")
+                      ->expected(2)
+                      ->delimiter(',');
+    auto* range = cli_->add_option("--gamma-range", range_, "γ([c0,c1],[c2,c3]), Definition 3.3: c0,c1,c2,c3")
+                      ->expected(4)
+                      ->delimiter(',');
+    auto* type = cli_->add_option("--type", type_,
+                                  "2D: cp, nng, emst, rng, gabriel, hull, delaunay, alpha, beta-lune, beta-circle");
+    cli_->add_option("--param", param_, "α for alpha, β for beta-lune / beta-circle");
+    cli_->add_option("--format", format_, "Input format, when the extension does not tell");
+    gamma->excludes(range)->excludes(type);
+    range->excludes(type);
+  }
+
+  void run(CommandContext& context) override {
+    if (gamma_.empty() && range_.empty() && !type_) throw InvalidInput("give one of --gamma, --gamma-range or --type");
+    io::check_writable(output_, context.overwrite);
+    const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
+    context.progress.finish();
+    StageTimer timer(context.report, "graph");
+    const bool json = output_.extension() == ".json";
+    if (cloud.dimension == 2) {
+      const Eigen::MatrixX2d V = cloud.positions.leftCols(2);
+      const Eigen::MatrixX2i E = type_ ? named_graph(*type_, V, param_)
+                                 : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])
+                                                   : gamma_graph(V, GammaRange{range_[0], range_[1], range_[2], range_[3]});
+      timer.stop();
+      if (json) {
+        io::write_file_atomically(output_, graph_json(E, 2).dump() + "\n", context.overwrite);
+      } else {
+        if (io::resolve_format(output_, std::nullopt) != io::FileFormat::svg)
+          throw InvalidInput(output_.string() + ": a 2D graph is written as .svg or .json");
+        SvgCanvas canvas(bounding_box(V));
+        canvas.segments(V, E, SvgStyle{"#1f4e9c", "none", 1.2, 0.0, ""});
+        canvas.points(V, SvgStyle{"none", "#c0392b", 0.0, 2.5, ""});
+        canvas.caption(std::to_string(V.rows()) + " points, " + std::to_string(E.rows()) + " edges");
+        io::write_file_atomically(output_, canvas.str(), context.overwrite);
+      }
+      report(context, E.rows(), "edges");
+    } else {
+      if (type_ && *type_ != "delaunay" && *type_ != "hull")
+        throw InvalidInput("--type " + *type_ + " is a 2D graph; in 3D use delaunay, hull, --gamma or --gamma-range");
+      const Eigen::MatrixX3d& V = cloud.positions;
+      const Eigen::MatrixX3i T = type_ ? (*type_ == "hull" ? gamma_graph(V, -1.0, 1.0) : gamma_graph(V, GammaRange{}))
+                                 : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])
+                                                   : gamma_graph(V, GammaRange{range_[0], range_[1], range_[2], range_[3]});
+      timer.stop();
+      if (json) {
+        io::write_file_atomically(output_, graph_json(T, 3).dump() + "\n", context.overwrite);
+      } else {
+        TriangleMesh mesh;
+        mesh.vertices = cloud;
+        mesh.faces = T;
+        io::write_mesh(output_, mesh, {std::nullopt, std::nullopt, context.overwrite});
+      }
+      report(context, T.rows(), "triangles");
+    }
+  }
+
+ private:
+  void report(CommandContext& context, Eigen::Index count, const char* what) const {
+    context.report["result"] = {{"simplices", count}, {"kind", what}};
+    std::printf("wrote %s: %lld %s\n", output_.c_str(), static_cast<long long>(count), what);
+  }
+
+  std::filesystem::path input_, output_;
+  std::vector<double> gamma_, range_;
+  std::optional<std::string> type_, format_;
+  std::optional<double> param_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_graph_command(CLI::App& parent) { return std::make_unique<GraphCommand>(parent); }
+
+}  // namespace scanstation::app
