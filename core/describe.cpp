@@ -1,6 +1,7 @@
 #include "core/describe.h"
 
 #include "core/bounding_box.h"
+#include "core/mesh_measures.h"
 #include "core/mesh_topology.h"
 #include "core/self_intersections.h"
 #include "core/unique_points.h"
@@ -60,16 +61,10 @@ nlohmann::json describe(const TriangleMesh& mesh) {
     j["topology"]["self_intersecting_pairs"] = pairs ? nlohmann::json(*pairs) : nlohmann::json(nullptr);
     j["topology"]["simple"] = pairs ? nlohmann::json(*pairs == 0) : nlohmann::json(nullptr);
   }
-  double area = 0.0, six_volume = 0.0;
-  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
-    const Eigen::Vector3d a = P.row(mesh.faces(f, 0)), b = P.row(mesh.faces(f, 1)), c = P.row(mesh.faces(f, 2));
-    area += 0.5 * (b - a).cross(c - a).norm();
-    six_volume += a.dot(b.cross(c));
-  }
-  j["area"] = area;
-  // The divergence theorem gives the enclosed volume only for a closed,
-  // consistently oriented surface; its sign says whether normals face out.
-  if (t.closed && t.oriented) j["volume"] = six_volume / 6.0;
+  j["area"] = surface_area(P, mesh.faces);
+  // Only a closed, consistently oriented surface encloses a volume; its sign
+  // says whether the faces point out.
+  if (t.closed && t.oriented) j["volume"] = enclosed_volume(P, mesh.faces);
   return j;
 }
 

@@ -1,6 +1,7 @@
 #include "reconstruct/boundary_reconstruction.h"
 
 #include "core/errors.h"
+#include "core/mesh_measures.h"
 #include "core/unique_points.h"
 
 #include <Eigen/Geometry>
@@ -73,13 +74,6 @@ std::vector<std::vector<int>> adjacency(const DelaunayComplex<3>& dt) {
     n.erase(std::unique(n.begin(), n.end()), n.end());
   }
   return out;
-}
-
-double enclosed_volume(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F) {
-  double six = 0.0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    six += Eigen::Vector3d(P.row(F(f, 0))).dot(Eigen::Vector3d(P.row(F(f, 1))).cross(Eigen::Vector3d(P.row(F(f, 2)))));
-  return six / 6.0;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Constriction (thesis Chapter 5): invariants on generated and real data.
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_measures.h"
 #include "core/mesh_topology.h"
 #include "core/polygon.h"
 #include "core/self_intersections.h"
@@ -21,15 +22,7 @@
 namespace scanstation {
 namespace {
 
-double signed_volume(const TriangleMesh& m) {
-  double six = 0.0;
-  for (Eigen::Index f = 0; f < m.face_count(); ++f) {
-    const Eigen::Vector3d a = m.vertices.positions.row(m.faces(f, 0)), b = m.vertices.positions.row(m.faces(f, 1)),
-                          c = m.vertices.positions.row(m.faces(f, 2));
-    six += a.dot(b.cross(c));
-  }
-  return six / 6.0;
-}
+double signed_volume(const TriangleMesh& m) { return enclosed_volume(m.vertices.positions, m.faces); }
 
 // What every constriction result must satisfy, whether or not all points
 // were reached: a closed, oriented 2-manifold of genus 0 whose enclosed

@@ -1,4 +1,5 @@
 #include "core/errors.h"
+#include "core/mesh_measures.h"
 #include "core/mesh_topology.h"
 #include "core/polygon.h"
 #include "sim/random.h"
@@ -12,15 +13,7 @@
 namespace scanstation::sim {
 namespace {
 
-double signed_volume(const TriangleMesh& m) {
-  double six = 0.0;
-  for (Eigen::Index f = 0; f < m.face_count(); ++f) {
-    const Eigen::Vector3d a = m.vertices.positions.row(m.faces(f, 0)), b = m.vertices.positions.row(m.faces(f, 1)),
-                          c = m.vertices.positions.row(m.faces(f, 2));
-    six += a.dot(b.cross(c));
-  }
-  return six / 6.0;
-}
+double signed_volume(const TriangleMesh& m) { return enclosed_volume(m.vertices.positions, m.faces); }
 
 TEST(Shapes, IcosphereConvergesToTheSphereOutwardOriented) {
   for (int s = 0; s <= 4; ++s) {
