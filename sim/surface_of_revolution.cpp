@@ -73,3 +73,17 @@ Eigen::MatrixX2d chalice_profile(int samples) {
 }
 
 }  // namespace scanstation::sim
+
+namespace scanstation::sim {
+
+Eigen::MatrixX2d candlestick_profile(int samples) {
+  if (samples < 8) throw InvalidInput("candlestick profile: at least 8 samples");
+  // (r, z): foot, base, shaft with two collars and a groove, drip pan,
+  // socket, flat top back to the axis.
+  Eigen::MatrixX2d key(18, 2);
+  key << 0.0, 0.0, 0.8, 0.0, 0.8, 0.12, 0.5, 0.2, 0.28, 0.35, 0.28, 0.7, 0.38, 0.78, 0.28, 0.86, 0.2, 1.2, 0.28, 1.55,
+      0.38, 1.62, 0.28, 1.7, 0.3, 1.9, 0.7, 1.95, 0.7, 2.02, 0.22, 2.08, 0.22, 2.3, 0.0, 2.3;
+  return resample_polyline(key, samples);
+}
+
+}  // namespace scanstation::sim

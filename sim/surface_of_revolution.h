@@ -19,6 +19,11 @@ TriangleMesh surface_of_revolution(const Eigen::MatrixX2d& profile, int segments
 /// the profile, spaced uniformly by arc length (≥ 8).
 Eigen::MatrixX2d chalice_profile(int samples);
 
+/// A candlestick (base, grooved shaft with collars, drip pan, socket): a solid
+/// of revolution with concave grooves but no cavity, like the synthetic
+/// candlestick of the thesis' Figure 5.5. `samples` as for the chalice.
+Eigen::MatrixX2d candlestick_profile(int samples);
+
 /// Points of a profile resampled uniformly by arc length, ends kept.
 Eigen::MatrixX2d resample_polyline(const Eigen::MatrixX2d& polyline, int samples);
 

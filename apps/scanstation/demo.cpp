@@ -5,6 +5,7 @@
 #include "command.h"
 #include "core/describe.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_measures.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/surface_of_revolution.h"
@@ -20,6 +21,9 @@ class DemoCommand final : public Command {
   explicit DemoCommand(CLI::App& parent)
       : Command(parent, "demo", "Run the station's main job on the built-in simulated object") {
     cli_->add_option("-o,--output", folder_, "Folder for the results")->capture_default_str();
+    cli_->add_option("--object", object_, "Built-in object: candlestick or chalice")
+        ->check(CLI::IsMember({"candlestick", "chalice"}))
+        ->capture_default_str();
     cli_->add_option("--profile-samples", profile_samples_, "Points along the object's profile")
         ->check(CLI::Range(8, 100000))
         ->capture_default_str();
@@ -35,7 +39,9 @@ class DemoCommand final : public Command {
     std::filesystem::create_directories(folder_);
 
     StageTimer simulate(context.report, "simulate");
-    const TriangleMesh object = sim::surface_of_revolution(sim::chalice_profile(profile_samples_), segments_);
+    const TriangleMesh object = sim::surface_of_revolution(
+        object_ == "chalice" ? sim::chalice_profile(profile_samples_) : sim::candlestick_profile(profile_samples_),
+        segments_);
     simulate.stop();
 
     ReconstructionOptions options;
@@ -53,26 +59,29 @@ class DemoCommand final : public Command {
     write.stop();
 
     const double recall = triangle_recall(object.faces, r.mesh.faces);
-    context.report["object"] = {{"name", "chalice"}, {"summary", describe(object)}};
+    context.report["object"] = {{"name", object_}, {"summary", describe(object)}};
     context.report["boundary"] = describe(r.mesh);
     context.report["all_on_boundary"] = r.statistics.all_on_boundary;
     context.report["triangle_recall"] = recall;
+    const double true_volume = enclosed_volume(object.vertices.positions, object.faces);
+    context.report["volume_ratio"] = r.statistics.enclosed_measure / true_volume;
     context.report["outputs"] = {{"points", path("points.ply").string()},
                                  {"object", path("object.ply").string()},
                                  {"mesh", path("mesh.ply").string()}};
     context.report.write(path("report.json"), context.overwrite);
-    std::printf("built-in object: chalice, %lld points on a closed genus-0 surface\n",
+    std::printf("built-in object: %s, %lld points on a closed genus-0 surface\n", object_.c_str(),
                 static_cast<long long>(object.vertex_count()));
-    std::printf("constriction: %lld triangles, %s, %.1f%% of the true triangles recovered\n",
+    std::printf("constriction: %lld triangles, %s, %.1f%% of the true triangles recovered, volume %.3f × the true one\n",
                 static_cast<long long>(r.mesh.face_count()),
                 r.statistics.all_on_boundary ? "every point on the boundary" : "locked before every point",
-                100.0 * recall);
+                100.0 * recall, r.statistics.enclosed_measure / true_volume);
     for (const char* name : {"points.ply", "object.ply", "mesh.ply", "report.json"})
       std::printf("wrote %s\n", path(name).c_str());
   }
 
  private:
   std::filesystem::path folder_ = "scanstation-demo";
+  std::string object_ = "candlestick";
   int profile_samples_ = 60;
   int segments_ = 48;
 };

@@ -53,6 +53,16 @@ TEST(Shapes, ChaliceIsAClosedGenusZeroSolidOfTheRightVolume) {
   EXPECT_NEAR(signed_volume(chalice), pappus, 0.002 * pappus);
 }
 
+TEST(Shapes, CandlestickIsAClosedGenusZeroSolid) {
+  const TriangleMesh c = surface_of_revolution(candlestick_profile(200), 64);
+  const MeshTopology t = mesh_topology(c);
+  EXPECT_TRUE(t.closed && t.manifold && t.oriented);
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_GT(signed_volume(c), 0.5);
+  EXPECT_LT(signed_volume(c), std::numbers::pi * 0.8 * 0.8 * 2.3);  // inside its bounding cylinder
+  EXPECT_THROW(candlestick_profile(3), InvalidInput);
+}
+
 TEST(Shapes, BadParametersAreRejected) {
   Eigen::MatrixX2d open(3, 2);
   open << 0, 0, 1, 0.5, 0.5, 1;  // does not end on the axis
