@@ -160,3 +160,189 @@ Augmentation augment_constriction(const Eigen::MatrixX3d& points, const std::vec
 }
 
 }  // namespace scanstation
+
+namespace scanstation {
+
+namespace {
+
+using Kernel2 = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// The polygon as a linked cycle with a grid over its edges (edge = its start
+// vertex a, running to next[a]).
+class Augmenter2 {
+ public:
+  Augmenter2(const Eigen::MatrixX2d& P, const std::vector<std::vector<int>>& adjacency, const Eigen::MatrixX2i& boundary)
+      : P_(P),
+        adjacency_(adjacency),
+        next_(static_cast<std::size_t>(P.rows()), -1),
+        points_(bounds(P), cell(P)),
+        edges_(bounds(P), cell(P)) {
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      exact_.emplace_back(P(i, 0), P(i, 1));
+      points_.insert(static_cast<int>(i), Eigen::AlignedBox3d(at(static_cast<int>(i)), at(static_cast<int>(i))));
+    }
+    for (Eigen::Index e = 0; e < boundary.rows(); ++e) link(boundary(e, 0), boundary(e, 1));
+  }
+
+  Augmentation run(std::vector<int>& interior, const AugmentationOptions& options) {
+    Augmentation result;
+    for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
+      c0 = std::max(c0, options.lowest);
+      heap_ = {};
+      for (const int v : interior) propose(v, c0);
+      while (!heap_.empty()) {
+        const Carve top = heap_.top();
+        heap_.pop();
+        const int a = top.face;  // the edge starting at a, as it is now
+        if (next_[static_cast<std::size_t>(top.vertex)] >= 0 || next_[static_cast<std::size_t>(a)] < 0) continue;
+        if (!allowed(a, top.vertex, c0)) continue;
+        carve(a, top.vertex);
+        ++result.carved;
+        for (const int v : adjacency_[static_cast<std::size_t>(top.vertex)])
+          if (next_[static_cast<std::size_t>(v)] < 0) propose(v, c0);
+      }
+      interior.erase(std::remove_if(interior.begin(), interior.end(),
+                                    [&](int v) { return next_[static_cast<std::size_t>(v)] >= 0; }),
+                     interior.end());
+      result.c0_used = c0;
+    }
+    return result;
+  }
+
+  Eigen::MatrixX2i boundary() const {
+    std::vector<std::array<int, 2>> e;
+    for (std::size_t a = 0; a < next_.size(); ++a)
+      if (next_[a] >= 0) e.push_back({static_cast<int>(a), next_[a]});
+    Eigen::MatrixX2i out(static_cast<Eigen::Index>(e.size()), 2);
+    for (std::size_t k = 0; k < e.size(); ++k) out.row(static_cast<Eigen::Index>(k)) << e[k][0], e[k][1];
+    return out;
+  }
+
+ private:
+  static Eigen::AlignedBox3d bounds(const Eigen::MatrixX2d& P) {
+    const Eigen::Vector2d lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
+    return Eigen::AlignedBox3d(Eigen::Vector3d(lo.x(), lo.y(), 0), Eigen::Vector3d(hi.x(), hi.y(), 0));
+  }
+  static double cell(const Eigen::MatrixX2d& P) {
+    const Eigen::Vector2d extent = (P.colwise().maxCoeff() - P.colwise().minCoeff()).transpose();
+    return std::max(std::sqrt(2.0 * extent.x() * extent.y() / static_cast<double>(std::max<Eigen::Index>(P.rows(), 1))),
+                    std::max(extent.maxCoeff(), 1e-300) / static_cast<double>(std::max<Eigen::Index>(P.rows(), 1)));
+  }
+  Eigen::Vector3d at(int i) const { return Eigen::Vector3d(P_(i, 0), P_(i, 1), 0.0); }
+  Eigen::AlignedBox3d box(int a, int b) const {
+    Eigen::AlignedBox3d x(at(a), at(a));
+    x.extend(at(b));
+    return x;
+  }
+  void link(int a, int b) {
+    next_[static_cast<std::size_t>(a)] = b;
+    edges_.insert(a, box(a, b));
+  }
+  void unlink(int a) {
+    edges_.erase(a, box(a, next_[static_cast<std::size_t>(a)]));
+    next_[static_cast<std::size_t>(a)] = -1;
+  }
+
+  void propose(int v, double c0) {
+    std::vector<int> near;
+    for (const int u : adjacency_[static_cast<std::size_t>(v)]) {
+      near.push_back(u);
+      for (const int w : adjacency_[static_cast<std::size_t>(u)]) near.push_back(w);
+    }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (const int a : near) {
+      const int b = next_[static_cast<std::size_t>(a)];
+      if (b < 0 || !allowed(a, v, c0)) continue;
+      heap_.push({gamma_indicator(Eigen::Vector2d(P_.row(a)), Eigen::Vector2d(P_.row(b)), Eigen::Vector2d(P_.row(v))), a, v});
+    }
+  }
+
+  // The edge (p, q) is in γ([-1,1],[c0,1]) when its open symmetric lens holds
+  // no point (two discs of radius r/(1−|c0|) through p and q).
+  bool in_gamma(int p, int q, double c0) const {
+    const Eigen::Vector2d A = P_.row(p), B = P_.row(q), mid = 0.5 * (A + B), e = B - A;
+    const double r = 0.5 * e.norm();
+    const Eigen::Vector2d unit = Eigen::Vector2d(-e.y(), e.x()).normalized();
+    const bool open_segment = c0 <= -1.0;
+    const double rho = open_segment ? 0.0 : r / (1.0 - std::abs(c0));
+    const double d = std::sqrt(std::max(rho * rho - r * r, 0.0));
+    bool empty = true;
+    points_.visit(Eigen::AlignedBox3d(Eigen::Vector3d(mid.x() - r, mid.y() - r, 0), Eigen::Vector3d(mid.x() + r, mid.y() + r, 0)),
+                  [&](int x) {
+                    if (!empty || x == p || x == q) return;
+                    const Eigen::Vector2d X = P_.row(x);
+                    if (!open_segment) {
+                      if ((X - (mid + d * unit)).norm() < rho && (X - (mid - d * unit)).norm() < rho) empty = false;
+                    } else if (Kernel2::Segment_2(exact_[static_cast<std::size_t>(p)], exact_[static_cast<std::size_t>(q)])
+                                   .has_on(exact_[static_cast<std::size_t>(x)])) {
+                      empty = false;
+                    }
+                  });
+    return empty;
+  }
+
+  // Exact: do segments (p, q) and (s, t) meet anywhere but a shared endpoint?
+  bool improper(int p, int q, int s, int t) const {
+    const auto& X = exact_;
+    const auto P = [&](int i) { return X[static_cast<std::size_t>(i)]; };
+    const int shared = (p == s || p == t) ? p : (q == s || q == t) ? q : -1;
+    if (shared < 0) return CGAL::do_intersect(Kernel2::Segment_2(P(p), P(q)), Kernel2::Segment_2(P(s), P(t)));
+    const int x = shared == p ? q : p, y = shared == s ? t : s;
+    if (x == y) return true;
+    return CGAL::orientation(P(shared), P(x), P(y)) == CGAL::COLLINEAR && CGAL::angle(P(x), P(shared), P(y)) == CGAL::ACUTE;
+  }
+
+  bool allowed(int a, int v, double c0) const {
+    const int b = next_[static_cast<std::size_t>(a)];
+    // v must lie strictly inside, on the left of a → b.
+    if (CGAL::orientation(exact_[static_cast<std::size_t>(a)], exact_[static_cast<std::size_t>(b)],
+                          exact_[static_cast<std::size_t>(v)]) != CGAL::LEFT_TURN)
+      return false;
+    if (!in_gamma(a, v, c0) || !in_gamma(v, b, c0)) return false;
+    const auto& X = exact_;
+    bool ok = true;
+    Eigen::AlignedBox3d region = box(a, b);
+    region.extend(at(v));
+    const Kernel2::Triangle_2 triangle(X[static_cast<std::size_t>(a)], X[static_cast<std::size_t>(b)], X[static_cast<std::size_t>(v)]);
+    points_.visit(region, [&](int q) {
+      if (ok && q != a && q != b && q != v && !triangle.has_on_unbounded_side(X[static_cast<std::size_t>(q)])) ok = false;
+    });
+    if (!ok) return false;
+    edges_.visit(region, [&](int s) {
+      const int t = next_[static_cast<std::size_t>(s)];
+      if (!ok || t < 0 || s == a) return;
+      if (improper(a, v, s, t) || improper(v, b, s, t)) ok = false;
+    });
+    return ok;
+  }
+
+  void carve(int a, int v) {
+    const int b = next_[static_cast<std::size_t>(a)];
+    unlink(a);
+    link(a, v);
+    link(v, b);
+  }
+
+  const Eigen::MatrixX2d& P_;
+  const std::vector<std::vector<int>>& adjacency_;
+  std::vector<Kernel2::Point_2> exact_;
+  std::vector<int> next_;
+  BoxGrid points_;
+  BoxGrid edges_;
+  std::priority_queue<Carve> heap_;
+};
+
+}  // namespace
+
+Augmentation augment_constriction(const Eigen::MatrixX2d& points, const std::vector<std::vector<int>>& adjacency,
+                                  Eigen::MatrixX2i& boundary, std::vector<int>& interior_vertices,
+                                  const AugmentationOptions& options) {
+  if (interior_vertices.empty()) return {};
+  Augmenter2 augmenter(points, adjacency, boundary);
+  const Augmentation result = augmenter.run(interior_vertices, options);
+  boundary = augmenter.boundary();
+  return result;
+}
+
+}  // namespace scanstation

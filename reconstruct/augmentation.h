@@ -46,3 +46,16 @@ Augmentation augment_constriction(const Eigen::MatrixX3d& points, const std::vec
                                   const AugmentationOptions& options = {});
 
 }  // namespace scanstation
+
+namespace scanstation {
+
+/// The 2D counterpart (Figure 5.7): boundary is #B by 2 directed edges of a
+/// counter-clockwise simple polygon (enclosed region on their left); a carve
+/// removes the triangle (a, b, v) behind an edge (a, b) and brings the
+/// interior point v onto the polygon, under the same γ([-1,1],[c0,1]),
+/// emptiness and non-crossing conditions as in 3D.
+Augmentation augment_constriction(const Eigen::MatrixX2d& points, const std::vector<std::vector<int>>& adjacency,
+                                  Eigen::MatrixX2i& boundary, std::vector<int>& interior_vertices,
+                                  const AugmentationOptions& options = {});
+
+}  // namespace scanstation

@@ -63,11 +63,12 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
 }
 
 // Delaunay neighbours of every point.
-std::vector<std::vector<int>> adjacency(const DelaunayComplex<3>& dt) {
+template <int D>
+std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
   std::vector<std::vector<int>> out(static_cast<std::size_t>(dt.points.rows()));
   for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
+    for (int i = 0; i <= D; ++i)
+      for (int j = 0; j <= D; ++j)
         if (i != j) out[static_cast<std::size_t>(dt.cells(c, i))].push_back(dt.cells(c, j));
   for (auto& n : out) {
     std::sort(n.begin(), n.end());
@@ -137,6 +138,15 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   start = std::chrono::steady_clock::now();
   Constriction<2> c = constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);
+  if (!c.all_on_boundary && options.augment) {
+    start = std::chrono::steady_clock::now();
+    const Augmentation a = augment_constriction(out.points, adjacency(dt), c.boundary, c.interior_vertices,
+                                                options.augmentation);
+    s.constriction_seconds += seconds_since(start);
+    s.c0_used = a.c0_used;
+    s.carved = a.carved;
+    c.all_on_boundary = c.interior_vertices.empty();
+  }
 
   // The boundary edges chain into one cycle: each boundary vertex has exactly
   // one outgoing edge.
@@ -158,12 +168,9 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   for (std::size_t k = 0; k < c.kept.size(); ++k)
     if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
   out.interior.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    const auto t = dt.cells.row(kept[k]);
-    out.interior.row(static_cast<Eigen::Index>(k)) = t;
-    const Eigen::Vector2d a = out.points.row(t(0)), b = out.points.row(t(1)), d = out.points.row(t(2));
-    s.enclosed_measure += 0.5 * ((b - a).x() * (d - a).y() - (b - a).y() * (d - a).x());
-  }
+  for (std::size_t k = 0; k < kept.size(); ++k) out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
+  if (s.carved > 0) out.interior.resize(0, 3);  // carved triangles overlap Delaunay cells
+  s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
   out.delaunay = dt.cells;
   fill_statistics(s, dt, c);
   return out;

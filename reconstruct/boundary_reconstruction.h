@@ -16,8 +16,8 @@ namespace scanstation {
 
 struct ReconstructionOptions {
   ConstrictionOptions constriction;
-  /// When constriction locks, carve on with tetrahedra of γ([-1,1],[c0,1]),
-  /// c0 < 0 (§5.4, 3D); off: keep the locked boundary.
+  /// When constriction locks, carve on with triangles (2D) or tetrahedra (3D)
+  /// of γ([-1,1],[c0,1]), c0 < 0 (§5.4); off: keep the locked boundary.
   bool augment = true;
   AugmentationOptions augmentation;
   /// 3D: once every point is on the boundary, flip edges that lower the
@@ -64,7 +64,8 @@ struct SurfaceReconstruction {
 /// points    the distinct input points in input order
 /// polygon   the boundary, counter-clockwise; `order` its vertices as indices
 ///           into `points`
-/// interior  #T by 3 kept triangles (indices into `points`)
+/// interior  #T by 3 kept triangles (indices into `points`); empty when
+///           augmentation carved
 /// delaunay  all Delaunay triangles, kept and removed (for pictures)
 /// source    #points: the input row each distinct point came from
 struct CurveReconstruction {

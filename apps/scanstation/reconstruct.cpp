@@ -157,7 +157,7 @@ class ReconstructCommand final : public Command {
                 shape.c_str(), static_cast<long long>(s.boundary_vertices),
                 static_cast<long long>(s.boundary_vertices + static_cast<Eigen::Index>(s.interior_vertices.size())),
                 static_cast<long long>(s.duplicates_merged));
-    if (s.carved > 0) std::printf("augmentation (§5.4) carved %zu tetrahedra down to c0 = %g\n", s.carved, *s.c0_used);
+    if (s.carved > 0) std::printf("augmentation (§5.4) carved %zu cells down to c0 = %g\n", s.carved, *s.c0_used);
     if (!s.all_on_boundary)
       std::printf("constriction locked: %zu points stayed inside (listed in the report); the boundary written is the "
                   "best found\n",
