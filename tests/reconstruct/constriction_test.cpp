@@ -161,6 +161,21 @@ TEST(Constriction3, RealCgalMeshes) {
   }
 }
 
+// Scans are noisy: with Gaussian noise of 0.1% of the bounding-box diagonal
+// the guarantees must hold all the same.
+TEST(Constriction3, NoisyRealMeshesKeepTheGuarantees) {
+  sim::Random random(9);
+  for (const std::string name : {"cactus", "hand", "retinal"}) {
+    Eigen::MatrixX3d P = io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions;
+    const double diagonal = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+    for (Eigen::Index i = 0; i < P.rows(); ++i)
+      for (int c = 0; c < 3; ++c) P(i, c) += 1e-3 * diagonal * random.normal();
+    const SurfaceReconstruction r = reconstruct_surface(P);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << name;
+    expect_valid_surface(r, name + " with noise");
+  }
+}
+
 TEST(Constriction3, MinimalAreaChangeBaselineGivesValidBoundaries) {
   ReconstructionOptions options;
   options.constriction.criterion = ConstrictionCriterion::minimal_area_change;
