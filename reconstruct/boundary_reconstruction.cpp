@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <cmath>
 
@@ -48,6 +50,25 @@ ReconstructionOptions renumbered(const ReconstructionOptions& options, const std
   return out;
 }
 
+// The points scaled by a power of two (exact, so every predicate answers as
+// before) to magnitudes near 1, where circumcentres and lens tests neither
+// overflow nor underflow: coordinates of 1e±200 behave like any others.
+template <int D>
+Eigen::Matrix<double, Eigen::Dynamic, D> unit_scaled(const Eigen::Matrix<double, Eigen::Dynamic, D>& P) {
+  const double largest = P.size() > 0 ? P.cwiseAbs().maxCoeff() : 0.0;
+  if (!(largest > 0.0)) return P;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  const double scale = std::ldexp(1.0, -exponent);
+  // Scaling down must not push any coordinate below the normal range, where
+  // it would lose bits (and distinct points could merge).
+  double smallest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < P.size(); ++i)
+    if (P.data()[i] != 0.0) smallest = std::min(smallest, std::abs(P.data()[i]));
+  if (scale < 1.0 && smallest * scale < std::numeric_limits<double>::min() * 0x1p53) return P;
+  return P * scale;
+}
+
 void require_finite(const Eigen::MatrixXd& P) {
   if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
 }
@@ -85,7 +106,8 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   BoundaryStatistics& s = out.statistics;
   s.input_points = points.rows();
   std::vector<Eigen::Index> map;
-  const Eigen::MatrixX3d P = distinct<3>(points, s.duplicates_merged, map, out.source);
+  const Eigen::MatrixX3d original = distinct<3>(points, s.duplicates_merged, map, out.source);
+  const Eigen::MatrixX3d P = unit_scaled<3>(original);
   const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
@@ -95,7 +117,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   Constriction<3> c = constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);
 
-  out.mesh.vertices.positions = P;
+  out.mesh.vertices.positions = original;
   out.mesh.faces = c.boundary;
   if (!c.all_on_boundary && options.augment) {
     start = std::chrono::steady_clock::now();
@@ -118,7 +140,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
     out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
   }
   if (s.carved > 0 || s.flips > 0) out.interior.resize(0, 4);
-  s.enclosed_measure = enclosed_volume(P, out.mesh.faces);
+  s.enclosed_measure = enclosed_volume(original, out.mesh.faces);
   fill_statistics(s, dt, c);
   return out;
 }
@@ -131,16 +153,17 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   std::vector<Eigen::Index> map;
   out.points = distinct<2>(points, s.duplicates_merged, map, out.source);
   const ReconstructionOptions options = renumbered(given, map);
+  const Eigen::MatrixX2d scaled = unit_scaled<2>(out.points);
 
   auto start = std::chrono::steady_clock::now();
-  const DelaunayComplex<2> dt = delaunay_complex(out.points);
+  const DelaunayComplex<2> dt = delaunay_complex(scaled);
   s.delaunay_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
   Constriction<2> c = constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);
   if (!c.all_on_boundary && options.augment) {
     start = std::chrono::steady_clock::now();
-    const Augmentation a = augment_constriction(out.points, adjacency(dt), c.boundary, c.interior_vertices,
+    const Augmentation a = augment_constriction(scaled, adjacency(dt), c.boundary, c.interior_vertices,
                                                 options.augmentation);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;

@@ -74,7 +74,7 @@ TEST(Constriction3, ResultIsInvariantUnderScaleAndTranslation) {
     for (int c = 0; c < 3; ++c) shape.vertices.positions(i, c) += 1e-4 * random.normal();
   const SurfaceReconstruction base = reconstruct_surface(shape.vertices.positions);
   expect_valid_surface(base, "jittered chalice");
-  for (const double scale : {1e-6, 1e6}) {
+  for (const double scale : {1e-200, 1e-6, 1e6, 1e200}) {
     Eigen::MatrixX3d moved = shape.vertices.positions * scale;
     moved.rowwise() += Eigen::RowVector3d(1e3, -2e3, 5e2) * scale;
     const SurfaceReconstruction r = reconstruct_surface(moved);
