@@ -3,7 +3,7 @@
 #include "reconstruct/boundary_surface.h"
 
 #include <algorithm>
-#include <deque>
+#include <queue>
 #include <tuple>
 #include <utility>
 
@@ -54,6 +54,7 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
     const Half &x = halves[i], &y = halves[i + 1];
     if (x.lo != y.lo || x.hi != y.hi) continue;
     const Eigen::Vector3d a = P.row(x.lo), b = P.row(x.hi), c = P.row(x.opposite), d = P.row(y.opposite);
+    // The two new triangles {a, c, d} and {b, c, d}, whichever face c is on.
     const double after = 0.5 * ((d - a).cross(c - a).norm() + (b - d).cross(c - d).norm());
     if (after < (x.area + y.area) * (1.0 - min_gain)) out.emplace_back(x.lo, x.hi);
   }
@@ -81,11 +82,28 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     return std::binary_search(fixed.begin(), fixed.end(), t);
   };
 
-  std::deque<std::pair<int, int>> edges(first.begin(), first.end());
+  // Largest relative area drop first: caps over concavities go before the
+  // small corrections around them.
+  struct Candidate {
+    double gain;
+    int a, b;
+    bool operator<(const Candidate& o) const { return gain != o.gain ? gain < o.gain : std::tie(a, b) > std::tie(o.a, o.b); }
+  };
+  std::priority_queue<Candidate> edges;
+  const auto gain_of = [&](int a, int b) {
+    const auto [f1, c] = face_with(surface, a, b);
+    const auto [f2, d] = face_with(surface, b, a);
+    if (f1 < 0 || f2 < 0 || c == d) return 0.0;
+    const double before = area(surface, surface.face(f1)) + area(surface, surface.face(f2));
+    const double after = area(surface, {a, d, c}) + area(surface, {d, b, c});
+    return before > 0 ? 1.0 - after / before : 0.0;
+  };
+  for (const auto& [a, b] : first) edges.push({gain_of(a, b), a, b});
   std::size_t flips = 0;
   while (!edges.empty()) {
-    const auto [a, b] = edges.front();
-    edges.pop_front();
+    const Candidate top = edges.top();
+    edges.pop();
+    const int a = top.a, b = top.b;
     const auto [f1, c] = face_with(surface, a, b);
     const auto [f2, d] = face_with(surface, b, a);
     if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
@@ -102,8 +120,10 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     surface.add_face(g1);
     surface.add_face(g2);
     ++flips;
-    for (const auto& [u, v] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}})
-      edges.emplace_back(std::min(u, v), std::max(u, v));
+    for (const auto& [u, v] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) {
+      const double g = gain_of(std::min(u, v), std::max(u, v));
+      if (g > min_gain) edges.push({g, std::min(u, v), std::max(u, v)});
+    }
   }
   boundary = surface.boundary();
   return flips;
