@@ -42,7 +42,7 @@ class Augmenter {
     for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
       c0 = std::max(c0, options.lowest);
       heap_ = {};
-      for (const int v : interior) propose(v, c0);
+      for (const int v : interior) propose(v);
       while (!heap_.empty()) {
         const Carve top = heap_.top();
         heap_.pop();
@@ -50,7 +50,7 @@ class Augmenter {
         carve(top.face, top.vertex);
         ++result.carved;
         for (const int v : near(top.vertex))
-          if (!surface_.on_boundary(v)) propose(v, c0);
+          if (!surface_.on_boundary(v)) propose(v);
       }
       interior.erase(std::remove_if(interior.begin(), interior.end(), [&](int v) { return surface_.on_boundary(v); }),
                      interior.end());
@@ -74,7 +74,7 @@ class Augmenter {
     return out;
   }
 
-  void propose(int v, double c0) {
+  void propose(int v) {
     for (const int u : near(v)) {
       if (!surface_.on_boundary(u)) continue;
       for (const int f : surface_.faces_at(u)) {
@@ -83,7 +83,9 @@ class Augmenter {
         if (CGAL::orientation(surface_.exact(t[0]), surface_.exact(t[1]), surface_.exact(t[2]), surface_.exact(v)) !=
             CGAL::NEGATIVE)
           continue;
-        if (!allowed(f, v, c0)) continue;
+        // The costly tests wait until the candidate reaches the top of the
+        // heap: most candidates of a point are never looked at again once
+        // a cheaper one has brought it to the boundary.
         heap_.push({gamma_indicator(surface_.point(t[0]), surface_.point(t[1]), surface_.point(t[2]), surface_.point(v)),
                     f, v});
       }
@@ -189,7 +191,7 @@ class Augmenter2 {
     for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
       c0 = std::max(c0, options.lowest);
       heap_ = {};
-      for (const int v : interior) propose(v, c0);
+      for (const int v : interior) propose(v);
       while (!heap_.empty()) {
         const Carve top = heap_.top();
         heap_.pop();
@@ -199,7 +201,7 @@ class Augmenter2 {
         carve(a, top.vertex);
         ++result.carved;
         for (const int v : adjacency_[static_cast<std::size_t>(top.vertex)])
-          if (next_[static_cast<std::size_t>(v)] < 0) propose(v, c0);
+          if (next_[static_cast<std::size_t>(v)] < 0) propose(v);
       }
       interior.erase(std::remove_if(interior.begin(), interior.end(),
                                     [&](int v) { return next_[static_cast<std::size_t>(v)] >= 0; }),
@@ -243,7 +245,7 @@ class Augmenter2 {
     next_[static_cast<std::size_t>(a)] = -1;
   }
 
-  void propose(int v, double c0) {
+  void propose(int v) {
     std::vector<int> near;
     for (const int u : adjacency_[static_cast<std::size_t>(v)]) {
       near.push_back(u);
@@ -253,7 +255,9 @@ class Augmenter2 {
     near.erase(std::unique(near.begin(), near.end()), near.end());
     for (const int a : near) {
       const int b = next_[static_cast<std::size_t>(a)];
-      if (b < 0 || !allowed(a, v, c0)) continue;
+      if (b < 0 || CGAL::orientation(exact_[static_cast<std::size_t>(a)], exact_[static_cast<std::size_t>(b)],
+                                     exact_[static_cast<std::size_t>(v)]) != CGAL::LEFT_TURN)
+        continue;
       heap_.push({gamma_indicator(Eigen::Vector2d(P_.row(a)), Eigen::Vector2d(P_.row(b)), Eigen::Vector2d(P_.row(v))), a, v});
     }
   }

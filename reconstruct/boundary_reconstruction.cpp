@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -80,7 +81,6 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
   s.interior_vertices = std::move(c.interior_vertices);
   s.all_on_boundary = c.all_on_boundary;
   s.boundary_vertices = dt.points.rows() - static_cast<Eigen::Index>(s.interior_vertices.size());
-  s.kept_faces_on_boundary = c.kept_faces_on_boundary;
 }
 
 // Delaunay neighbours of every point.
@@ -96,6 +96,22 @@ std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
     n.erase(std::unique(n.begin(), n.end()), n.end());
   }
   return out;
+}
+
+// How many rows of `wanted` (#K by D vertex indices) are faces of
+// `boundary` (#B by D), as unordered tuples.
+std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& boundary) {
+  const auto sorted = [](Eigen::VectorXi row) {
+    std::sort(row.data(), row.data() + row.size());
+    return std::vector<int>(row.data(), row.data() + row.size());
+  };
+  std::vector<std::vector<int>> have;
+  for (Eigen::Index f = 0; f < boundary.rows(); ++f) have.push_back(sorted(boundary.row(f).transpose()));
+  std::sort(have.begin(), have.end());
+  std::size_t count = 0;
+  for (Eigen::Index k = 0; k < wanted.rows(); ++k)
+    count += std::binary_search(have.begin(), have.end(), sorted(wanted.row(k).transpose()));
+  return count;
 }
 
 }  // namespace
@@ -114,7 +130,13 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   const DelaunayComplex<3> dt = delaunay_complex(P);
   s.delaunay_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  Constriction<3> c = constrict(dt, options.constriction);
+  ConstrictionOptions constriction = options.constriction;
+  if (options.guide) {
+    constriction.guide_c1 = options.guide->c1;
+    constriction.guide_c0 = options.guide->c0;
+  }
+  Constriction<3> c = constrict(dt, constriction);
+  s.guide_faces = c.guide_faces;
   s.constriction_seconds = seconds_since(start);
 
   out.mesh.vertices.positions = original;
@@ -142,6 +164,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   if (s.carved > 0 || s.flips > 0) out.interior.resize(0, 4);
   s.enclosed_measure = enclosed_volume(original, out.mesh.faces);
   fill_statistics(s, dt, c);
+  s.kept_faces_on_boundary = faces_on(options.constriction.keep, Eigen::MatrixXi(out.mesh.faces));
   return out;
 }
 
@@ -196,6 +219,10 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
   out.delaunay = dt.cells;
   fill_statistics(s, dt, c);
+  Eigen::MatrixXi edges(static_cast<Eigen::Index>(out.order.size()), 2);
+  for (std::size_t k = 0; k < out.order.size(); ++k)
+    edges.row(static_cast<Eigen::Index>(k)) << out.order[k], out.order[(k + 1) % out.order.size()];
+  s.kept_faces_on_boundary = faces_on(options.constriction.keep, edges);
   return out;
 }
 

@@ -14,8 +14,21 @@
 
 namespace scanstation {
 
+/// γ-guided constriction (a scanstation extension of §5.7): Delaunay faces
+/// whose two empty Delaunay balls are both wide — the face is in
+/// γ([c0,1],[c1,1]) read from its two γ-indicators — are kept like
+/// user-given faces, so constriction does not cut through what the γ-graph
+/// already shows as the object's outside (§3.4: well-chosen γ-parameters
+/// reveal the external structure).
+struct GuideOptions {
+  double c1 = 0.7;  ///< the wider ball must reach at least this γ-value
+  double c0 = 0.0;  ///< and the narrower one at least this
+};
+
 struct ReconstructionOptions {
   ConstrictionOptions constriction;
+  /// 3D: keep the faces the γ-graph marks as outside; nullopt: plain thesis constriction.
+  std::optional<GuideOptions> guide = GuideOptions{};
   /// When constriction locks, carve on with triangles (2D) or tetrahedra (3D)
   /// of γ([-1,1],[c0,1]), c0 < 0 (§5.4); off: keep the locked boundary.
   bool augment = true;
@@ -39,6 +52,7 @@ struct BoundaryStatistics {
   std::size_t carved = 0;                 ///< tetrahedra carved by augmentation
   std::size_t kept_faces_on_boundary = 0; ///< of the faces asked to stay (§5.7), how many are on the boundary
   std::size_t flips = 0;                  ///< edge flips made after constriction
+  std::size_t guide_faces = 0;            ///< faces kept by γ-guided constriction
   double flip_seconds = 0.0;
   double delaunay_seconds = 0.0;
   double constriction_seconds = 0.0;

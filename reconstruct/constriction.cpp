@@ -177,8 +177,30 @@ class Constrictor {
     return face_key(v);
   }
 
+  // γ-guided faces: both empty Delaunay balls wide (see ConstrictionOptions).
+  void mark_guide_faces() {
+    if constexpr (D == 3) {
+      const double c1 = *options_.guide_c1, c0 = options_.guide_c0;
+      for (int c = 0; c < cells_; ++c)
+        for (int i = 0; i <= D; ++i) {
+          const int n = dt_.neighbors(c, i);
+          if (n >= 0 && n < c) continue;  // each face once
+          int j = 0;
+          if (n >= 0)
+            while (dt_.neighbors(n, j) != c) ++j;
+          const double own = gamma_indicator(dt_, c, i), other = n >= 0 ? gamma_indicator(dt_, n, j) : 1.0;
+          if (std::max(own, other) < c1 || std::min(own, other) < c0) continue;
+          fixed_[static_cast<std::size_t>(c)] |= static_cast<std::uint8_t>(1u << i);
+          if (n >= 0) fixed_[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1u << j);
+          ++guided_;
+        }
+    }
+  }
+
   // §5.7: faces that must stay, flagged per cell face.
   void mark_kept_faces() {
+    if (options_.guide_c1 || options_.keep.rows() > 0) fixed_.assign(static_cast<std::size_t>(cells_), 0);
+    if (options_.guide_c1) mark_guide_faces();
     if (options_.keep.rows() == 0) return;
     if (options_.keep.cols() != D) throw InvalidInput("kept faces need " + std::to_string(D) + " vertex indices each");
     if (dt_.points.rows() >= (Eigen::Index{1} << 21))
@@ -193,7 +215,6 @@ class Constrictor {
       }
       wanted.emplace(face_key(v), static_cast<int>(k));
     }
-    fixed_.assign(static_cast<std::size_t>(cells_), 0);
     std::vector<char> found(static_cast<std::size_t>(options_.keep.rows()), 0);
     for (int c = 0; c < cells_; ++c)
       for (int i = 0; i <= D; ++i)
@@ -297,9 +318,7 @@ class Constrictor {
       if (!on_boundary_[static_cast<std::size_t>(v)]) out.interior_vertices.push_back(static_cast<int>(v));
     out.removed_cells = removed_;
     out.all_on_boundary = out.interior_vertices.empty();
-    for (int c = 0; c < cells_; ++c)
-      for (int i = 0; i <= D && !fixed_.empty(); ++i)
-        if (kept_[static_cast<std::size_t>(c)] && fixed(c, i) && boundary_face(c, i)) ++out.kept_faces_on_boundary;
+    out.guide_faces = guided_;
     return out;
   }
 
@@ -314,6 +333,7 @@ class Constrictor {
   std::priority_queue<Candidate> heap_;
   std::size_t removed_ = 0;
   std::vector<std::uint8_t> fixed_;  // bit i: the face opposite vertex i must stay
+  std::size_t guided_ = 0;
 };
 
 }  // namespace

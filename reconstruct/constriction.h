@@ -29,6 +29,11 @@ struct ConstrictionOptions {
   /// 2D, triangles in 3D) that must never be deleted. Each must be a face of
   /// the Delaunay triangulation (InvalidInput names the first that is not).
   Eigen::MatrixXi keep;
+  /// γ-guided constriction (3D): also keep every face whose γ-indicators
+  /// with respect to its two opposite vertices (1 across the hull) are both
+  /// at least guide_c0 and one at least guide_c1; nullopt: off.
+  std::optional<double> guide_c1;
+  double guide_c0 = 0.0;
   /// Fraction of the points on the boundary so far.
   ProgressCallback progress;
 };
@@ -47,7 +52,7 @@ struct Constriction {
   std::vector<int> interior_vertices;
   std::size_t removed_cells = 0;
   bool all_on_boundary = false;
-  std::size_t kept_faces_on_boundary = 0;  ///< of options.keep, how many ended on the boundary
+  std::size_t guide_faces = 0;  ///< faces kept by γ-guided constriction
 };
 
 /// Removes boundary cells of the Delaunay complex one at a time, always the

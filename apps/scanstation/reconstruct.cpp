@@ -10,6 +10,7 @@
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/boundary_svg.h"
 
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -27,7 +28,8 @@ nlohmann::json statistics_json(const BoundaryStatistics& s) {
           {"removed_cells", s.removed_cells},
           {"c0_used", s.c0_used ? nlohmann::json(*s.c0_used) : nlohmann::json(nullptr)},
           {"carved", s.carved},
-          {"flips", s.flips}};
+          {"flips", s.flips},
+          {"guide_faces", s.guide_faces}};
 }
 
 class ReconstructCommand final : public Command {
@@ -51,6 +53,10 @@ class ReconstructCommand final : public Command {
                      "3D, after constriction: area (flip edges while the surface area drops, §4.3.2) or off")
         ->check(CLI::IsMember({"area", "off"}))
         ->capture_default_str();
+    cli_->add_option("--guide", guide_,
+                     "3D γ-guided constriction: keep Delaunay faces whose two γ-indicators are ≥ C0 and one ≥ C1, "
+                     "given as C1,C0; or off for the thesis' plain constriction")
+        ->capture_default_str();
     cli_->add_option("--method", method_,
                      "gamma: smallest γ-indicator first (thesis Ch. 5); min-area-change: Expression (4.1) (§4.3.3)")
         ->check(CLI::IsMember({"gamma", "min-area-change"}))
@@ -70,6 +76,7 @@ class ReconstructCommand final : public Command {
     if (svg_) io::check_writable(*svg_, context.overwrite);
     options_.constriction.until_indicator = until_;
     if (flips_ == "off") options_.flips.reset();
+    configure_guide();
     if (method_ == "min-area-change") options_.constriction.criterion = ConstrictionCriterion::minimal_area_change;
     configure_augmentation();
     if (interior_) io::check_writable(*interior_, context.overwrite);
@@ -134,6 +141,19 @@ class ReconstructCommand final : public Command {
     io::write_mesh(*interior_, mesh, write);
   }
 
+  void configure_guide() {
+    if (guide_ == "off") {
+      options_.guide.reset();
+      return;
+    }
+    const auto comma = guide_.find(',');
+    const auto c1 = io::parse_double(guide_.substr(0, comma));
+    const auto c0 = comma == std::string::npos ? std::optional<double>(0.0) : io::parse_double(guide_.substr(comma + 1));
+    if (!c1 || !c0 || std::abs(*c1) > 1.0 || std::abs(*c0) > 1.0)
+      throw InvalidInput("--guide: expected C1[,C0] with values in [-1, 1], or off; got '" + guide_ + "'");
+    options_.guide = GuideOptions{*c1, *c0};
+  }
+
   void configure_augmentation() {
     if (augment_ == "auto") return;
     if (augment_ == "off") {
@@ -172,6 +192,7 @@ class ReconstructCommand final : public Command {
   std::string augment_ = "auto";
   std::string method_ = "gamma";
   std::string flips_ = "area";
+  std::string guide_ = "0.7,0";
   std::optional<std::filesystem::path> keep_, interior_;
 };
 

@@ -207,6 +207,10 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --method voodoo").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --augment 0.5").exit_code, 1);
+  EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --guide 2,0").exit_code, 1);
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "g.off") + " --guide off --report " + path(dir / "g.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "g.json"))["result"]["guide_faces"], 0);
   {
     std::ofstream(dir / "keep.txt") << "# faces\n0 1 x\n";
   }
