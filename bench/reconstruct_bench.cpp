@@ -3,7 +3,8 @@
 //
 //   build/bench/reconstruct_bench [--benchmark_filter=/1000000]
 //
-// Points: uniform on an ellipsoid with radii (3, 2, 1), seeded.
+// Points: 3D uniform on an ellipsoid with radii (3, 2, 1); 2D on a closed
+// star-shaped curve; seeded.
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/random.h"
 
@@ -42,8 +43,10 @@ const Eigen::MatrixX2d& disc_points(Eigen::Index n) {
     sim::Random random(7);
     it->second.resize(n, 2);
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double a = 2 * std::numbers::pi * random.uniform(), r = 1.0 + 0.01 * random.normal();
-      it->second.row(i) << r * std::cos(a), r * std::sin(a);  // a noisy ring: a closed curve to find
+      // A five-pointed star-shaped closed curve, sampled at random angles
+      // with a little noise: the curve to find.
+      const double a = 2 * std::numbers::pi * random.uniform(), r = 1.0 + 0.3 * std::sin(5 * a) + 1e-7 * random.normal();
+      it->second.row(i) << r * std::cos(a), r * std::sin(a);
     }
   }
   return it->second;

@@ -188,8 +188,10 @@ class Constrictor {
           int j = 0;
           if (n >= 0)
             while (dt_.neighbors(n, j) != c) ++j;
-          const double own = gamma_indicator(dt_, c, i), other = n >= 0 ? gamma_indicator(dt_, n, j) : 1.0;
-          if (std::max(own, other) < c1 || std::min(own, other) < c0) continue;
+          const double own = gamma_indicator(dt_, c, i);
+          if (own < c0) continue;  // cheap exit: most interior faces have a narrow ball
+          const double other = n >= 0 ? gamma_indicator(dt_, n, j) : 1.0;
+          if (std::max(own, other) < c1 || other < c0) continue;
           fixed_[static_cast<std::size_t>(c)] |= static_cast<std::uint8_t>(1u << i);
           if (n >= 0) fixed_[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1u << j);
           ++guided_;
