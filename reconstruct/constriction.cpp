@@ -177,32 +177,33 @@ class Constrictor {
     return face_key(v);
   }
 
-  // γ-guided faces: both empty Delaunay balls wide (see ConstrictionOptions).
-  void mark_guide_faces() {
-    if constexpr (D == 3) {
-      const double c1 = *options_.guide_c1, c0 = options_.guide_c0;
-      for (int c = 0; c < cells_; ++c)
-        for (int i = 0; i <= D; ++i) {
-          const int n = dt_.neighbors(c, i);
-          if (n >= 0 && n < c) continue;  // each face once
-          int j = 0;
-          if (n >= 0)
-            while (dt_.neighbors(n, j) != c) ++j;
-          const double own = gamma_indicator(dt_, c, i);
-          if (own < c0) continue;  // cheap exit: most interior faces have a narrow ball
-          const double other = n >= 0 ? gamma_indicator(dt_, n, j) : 1.0;
-          if (std::max(own, other) < c1 || other < c0) continue;
-          fixed_[static_cast<std::size_t>(c)] |= static_cast<std::uint8_t>(1u << i);
-          if (n >= 0) fixed_[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1u << j);
-          ++guided_;
-        }
+  // γ-guided faces (see ConstrictionOptions), decided the first time a face
+  // is asked about — only faces that reach the boundary ever are — and
+  // recorded for both cells that share it.
+  void decide_guide(int c, int i) const {
+    const int n = dt_.neighbors(c, i);
+    int j = 0;
+    if (n >= 0)
+      while (dt_.neighbors(n, j) != c) ++j;
+    bool keep = false;
+    const double own = gamma_indicator(dt_, c, i);
+    if (own >= options_.guide_c0) {
+      const double other = n >= 0 ? gamma_indicator(dt_, n, j) : 1.0;
+      keep = std::max(own, other) >= *options_.guide_c1 && other >= options_.guide_c0;
     }
+    guide_known_[static_cast<std::size_t>(c)] |= static_cast<std::uint8_t>(1u << i);
+    if (keep) fixed_[static_cast<std::size_t>(c)] |= static_cast<std::uint8_t>(1u << i);
+    if (n >= 0) {
+      guide_known_[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1u << j);
+      if (keep) fixed_[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>(1u << j);
+    }
+    guided_ += keep;
   }
 
   // §5.7: faces that must stay, flagged per cell face.
   void mark_kept_faces() {
     if (options_.guide_c1 || options_.keep.rows() > 0) fixed_.assign(static_cast<std::size_t>(cells_), 0);
-    if (options_.guide_c1) mark_guide_faces();
+    if (D == 3 && options_.guide_c1) guide_known_.assign(static_cast<std::size_t>(cells_), 0);
     if (options_.keep.rows() == 0) return;
     if (options_.keep.cols() != D) throw InvalidInput("kept faces need " + std::to_string(D) + " vertex indices each");
     if (dt_.points.rows() >= (Eigen::Index{1} << 21))
@@ -229,7 +230,11 @@ class Constrictor {
         throw InvalidInput("kept face " + std::to_string(k) +
                            " is not a face of the Delaunay triangulation; constrained constriction keeps Delaunay faces");
   }
-  bool fixed(int c, int i) const { return !fixed_.empty() && (fixed_[static_cast<std::size_t>(c)] >> i & 1u); }
+  bool fixed(int c, int i) const {
+    if (fixed_.empty()) return false;
+    if (!guide_known_.empty() && !(guide_known_[static_cast<std::size_t>(c)] >> i & 1u)) decide_guide(c, i);
+    return fixed_[static_cast<std::size_t>(c)] >> i & 1u;
+  }
 
   bool removable(int c) const {
     int faces[D + 1];
@@ -334,8 +339,11 @@ class Constrictor {
   EdgeCounter edges_;
   std::priority_queue<Candidate> heap_;
   std::size_t removed_ = 0;
-  std::vector<std::uint8_t> fixed_;  // bit i: the face opposite vertex i must stay
-  std::size_t guided_ = 0;
+  // Bit i: the face opposite vertex i must stay; guide bits are filled in
+  // lazily by fixed(), hence mutable.
+  mutable std::vector<std::uint8_t> fixed_;
+  mutable std::vector<std::uint8_t> guide_known_;
+  mutable std::size_t guided_ = 0;
 };
 
 }  // namespace

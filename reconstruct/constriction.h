@@ -52,7 +52,7 @@ struct Constriction {
   std::vector<int> interior_vertices;
   std::size_t removed_cells = 0;
   bool all_on_boundary = false;
-  std::size_t guide_faces = 0;  ///< faces kept by γ-guided constriction
+  std::size_t guide_faces = 0;  ///< faces γ-guided constriction kept (of those it was asked about)
 };
 
 /// Removes boundary cells of the Delaunay complex one at a time, always the
