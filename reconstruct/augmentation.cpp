@@ -24,6 +24,32 @@ struct Carve {
   }
 };
 
+// The adaptive levels of §5.4, shared by 2D and 3D: at each c0 from
+// `highest` down to `lowest`, every candidate carve of the points still
+// inside, smallest γ-indicator first, checked in full when it is popped.
+template <typename Carver>
+Augmentation run_levels(Carver& carver, std::priority_queue<Carve>& heap, std::vector<int>& interior,
+                        const AugmentationOptions& options) {
+  Augmentation result;
+  for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
+    c0 = std::max(c0, options.lowest);
+    heap = {};
+    for (const int v : interior) carver.propose(v);
+    while (!heap.empty()) {
+      const Carve top = heap.top();
+      heap.pop();
+      if (!carver.still_there(top) || !carver.allowed(top.face, top.vertex, c0)) continue;
+      carver.carve(top.face, top.vertex);
+      ++result.carved;
+      carver.propose_around(top.vertex);
+    }
+    interior.erase(std::remove_if(interior.begin(), interior.end(), [&](int v) { return carver.on_boundary(v); }),
+                   interior.end());
+    result.c0_used = c0;
+  }
+  return result;
+}
+
 class Augmenter {
  public:
   Augmenter(const Eigen::MatrixX3d& P, const std::vector<std::vector<int>>& adjacency, const Eigen::MatrixX3i& boundary,
@@ -38,28 +64,21 @@ class Augmenter {
   }
 
   Augmentation run(std::vector<int>& interior, const AugmentationOptions& options) {
-    Augmentation result;
-    for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
-      c0 = std::max(c0, options.lowest);
-      heap_ = {};
-      for (const int v : interior) propose(v);
-      while (!heap_.empty()) {
-        const Carve top = heap_.top();
-        heap_.pop();
-        if (!surface_.alive(top.face) || surface_.on_boundary(top.vertex) || !allowed(top.face, top.vertex, c0)) continue;
-        carve(top.face, top.vertex);
-        ++result.carved;
-        for (const int v : near(top.vertex))
-          if (!surface_.on_boundary(v)) propose(v);
-      }
-      interior.erase(std::remove_if(interior.begin(), interior.end(), [&](int v) { return surface_.on_boundary(v); }),
-                     interior.end());
-      result.c0_used = c0;
-    }
-    return result;
+    return run_levels(*this, heap_, interior, options);
+  }
+
+  // The hooks run_levels drives.
+  bool on_boundary(int v) const { return surface_.on_boundary(v); }
+  bool still_there(const Carve& c) const { return surface_.alive(c.face) && !surface_.on_boundary(c.vertex); }
+  void propose_around(int v) {
+    for (const int u : near(v))
+      if (!surface_.on_boundary(u)) propose(u);
   }
 
   Eigen::MatrixX3i boundary() const { return surface_.boundary(); }
+
+  template <typename Carver>
+  friend Augmentation run_levels(Carver&, std::priority_queue<Carve>&, std::vector<int>&, const AugmentationOptions&);
 
  private:
   // Points within two Delaunay edges of v: the candidates' neighbourhood.
@@ -187,28 +206,15 @@ class Augmenter2 {
   }
 
   Augmentation run(std::vector<int>& interior, const AugmentationOptions& options) {
-    Augmentation result;
-    for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
-      c0 = std::max(c0, options.lowest);
-      heap_ = {};
-      for (const int v : interior) propose(v);
-      while (!heap_.empty()) {
-        const Carve top = heap_.top();
-        heap_.pop();
-        const int a = top.face;  // the edge starting at a, as it is now
-        if (next_[static_cast<std::size_t>(top.vertex)] >= 0 || next_[static_cast<std::size_t>(a)] < 0) continue;
-        if (!allowed(a, top.vertex, c0)) continue;
-        carve(a, top.vertex);
-        ++result.carved;
-        for (const int v : adjacency_[static_cast<std::size_t>(top.vertex)])
-          if (next_[static_cast<std::size_t>(v)] < 0) propose(v);
-      }
-      interior.erase(std::remove_if(interior.begin(), interior.end(),
-                                    [&](int v) { return next_[static_cast<std::size_t>(v)] >= 0; }),
-                     interior.end());
-      result.c0_used = c0;
-    }
-    return result;
+    return run_levels(*this, heap_, interior, options);
+  }
+
+  // The hooks run_levels drives; an edge is named by its start vertex.
+  bool on_boundary(int v) const { return next_[static_cast<std::size_t>(v)] >= 0; }
+  bool still_there(const Carve& c) const { return !on_boundary(c.vertex) && on_boundary(c.face); }
+  void propose_around(int v) {
+    for (const int u : adjacency_[static_cast<std::size_t>(v)])
+      if (!on_boundary(u)) propose(u);
   }
 
   Eigen::MatrixX2i boundary() const {
@@ -219,6 +225,9 @@ class Augmenter2 {
     for (std::size_t k = 0; k < e.size(); ++k) out.row(static_cast<Eigen::Index>(k)) << e[k][0], e[k][1];
     return out;
   }
+
+  template <typename Carver>
+  friend Augmentation run_levels(Carver&, std::priority_queue<Carve>&, std::vector<int>&, const AugmentationOptions&);
 
  private:
   static Eigen::AlignedBox3d bounds(const Eigen::MatrixX2d& P) {
