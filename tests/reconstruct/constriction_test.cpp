@@ -205,22 +205,27 @@ TEST(Constriction3, MinimalAreaChangeBaselineGivesValidBoundaries) {
   }
 }
 
+// The triangles of a set of tetrahedra, as sorted vertex triples.
+std::set<std::array<int, 3>> faces_of(const Eigen::MatrixX4i& tetrahedra) {
+  std::set<std::array<int, 3>> faces;
+  for (Eigen::Index c = 0; c < tetrahedra.rows(); ++c)
+    for (int i = 0; i < 4; ++i) {
+      std::array<int, 3> f{};
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != i) f[static_cast<std::size_t>(n++)] = tetrahedra(c, k);
+      std::sort(f.begin(), f.end());
+      faces.insert(f);
+    }
+  return faces;
+}
+
 // §5.7: faces asked to stay are never deleted: each is still a face of a
 // kept tetrahedron; keeping the true faces must raise the recall.
 TEST(Constriction3, ConstrainedConstrictionNeverDeletesKeptFaces) {
   const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/spool.off"));
   const SurfaceReconstruction plain = reconstruct_surface(truth.vertices.positions);
   // The true faces that are Delaunay faces (faces of some Delaunay cell).
-  std::set<std::array<int, 3>> delaunay_faces;
-  const DelaunayComplex<3> dt = delaunay_complex(truth.vertices.positions);
-  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-    for (int i = 0; i < 4; ++i) {
-      std::array<int, 3> f{};
-      for (int k = 0, n = 0; k < 4; ++k)
-        if (k != i) f[static_cast<std::size_t>(n++)] = dt.cells(c, k);
-      std::sort(f.begin(), f.end());
-      delaunay_faces.insert(f);
-    }
+  const std::set<std::array<int, 3>> delaunay_faces = faces_of(delaunay_complex(truth.vertices.positions).cells);
   std::vector<std::array<int, 3>> keep;
   for (Eigen::Index f = 0; f < truth.face_count(); ++f) {
     std::array<int, 3> t{truth.faces(f, 0), truth.faces(f, 1), truth.faces(f, 2)};
@@ -236,15 +241,7 @@ TEST(Constriction3, ConstrainedConstrictionNeverDeletesKeptFaces) {
     options.constriction.keep.row(static_cast<Eigen::Index>(k)) << keep[k][0], keep[k][1], keep[k][2];
   const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions, options);
   expect_valid_surface(r, "spool, constrained");
-  std::set<std::array<int, 3>> present;
-  for (Eigen::Index t = 0; t < r.interior.rows(); ++t)
-    for (int i = 0; i < 4; ++i) {
-      std::array<int, 3> f{};
-      for (int k = 0, n = 0; k < 4; ++k)
-        if (k != i) f[static_cast<std::size_t>(n++)] = r.interior(t, k);
-      std::sort(f.begin(), f.end());
-      present.insert(f);
-    }
+  const std::set<std::array<int, 3>> present = faces_of(r.interior);
   for (const auto& f : keep) EXPECT_TRUE(present.count(f)) << f[0] << " " << f[1] << " " << f[2];
   EXPECT_GT(triangle_recall(truth.faces, r.mesh.faces), triangle_recall(truth.faces, plain.mesh.faces));
   EXPECT_EQ(r.statistics.kept_faces_on_boundary,
