@@ -7,7 +7,10 @@
 #include "core/self_intersections.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
+#include "sim/outlines.h"
 #include "sim/random.h"
+#include "sim/relief_mask.h"
+#include "sim/sampling.h"
 #include "sim/shapes.h"
 #include "sim/surface_of_revolution.h"
 #include "test_support.h"
@@ -47,6 +50,20 @@ void expect_valid_surface(const SurfaceReconstruction& r, const std::string& wha
   }
   EXPECT_EQ(t.isolated_vertices, r.statistics.interior_vertices.size()) << what;
   EXPECT_EQ(self_intersections(r.mesh), std::optional<std::size_t>(0)) << what << ": not simple";
+}
+
+// Points sampled at random over the relief mask (the thesis' Figure 5.6), with
+// and without noise of 0.1% of its size: valid through every point.
+TEST(Constriction3, SampledReliefMaskGivesAValidBoundaryThroughAllPoints) {
+  const TriangleMesh mask = sim::relief_mask(30, 72);
+  for (const double noise : {0.0, 0.002}) {
+    const PointCloud sample = sim::sample_surface(mask, 3000, 5, noise);
+    const SurfaceReconstruction r = reconstruct_surface(sample.positions);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << noise;
+    expect_valid_surface(r, "mask, noise " + std::to_string(noise));
+    // Close to the true solid: within 10% of its volume.
+    EXPECT_NEAR(signed_volume(r.mesh) / signed_volume(mask), 1.0, 0.1) << noise;
+  }
 }
 
 TEST(Constriction3, GeneratedShapesGiveClosedGenusZeroBoundariesThroughAllPoints) {
@@ -260,19 +277,27 @@ TEST(Constriction3, ConstrainedConstrictionNeverDeletesKeptFaces) {
     test::expect_error<InvalidInput>([&] { reconstruct_surface(truth.vertices.positions, options); }, {"Delaunay"});
 }
 
-TEST(Constriction2, ChaliceSilhouetteGivesASimplePolygonThroughAllPoints) {
-  // The profile mirrored: a closed silhouette sampled by points.
-  const Eigen::MatrixX2d profile = sim::chalice_profile(80);
-  Eigen::MatrixX2d P(2 * profile.rows() - 2, 2);
-  Eigen::Index n = 0;
-  for (Eigen::Index i = 0; i < profile.rows(); ++i) P.row(n++) << profile(i, 0), profile(i, 1);
-  for (Eigen::Index i = profile.rows() - 2; i >= 1; --i) P.row(n++) << -profile(i, 0), profile(i, 1);
-  const CurveReconstruction r = reconstruct_curve(P);
-  EXPECT_TRUE(r.statistics.all_on_boundary);
-  EXPECT_EQ(r.polygon.size(), P.rows());
-  EXPECT_TRUE(is_simple(r.polygon));
-  EXPECT_GT(twice_signed_area(r.polygon), 0.0);
-  EXPECT_NEAR(twice_signed_area(r.polygon) / 2.0, r.statistics.enclosed_measure, 1e-9);
+TEST(Constriction2, ChaliceAndFaceOutlinesGiveSimplePolygonsThroughAllPoints) {
+  // The thesis' 2D examples (Figures 5.2, 5.3): vertices of a chalice
+  // silhouette, and points sampled along a face profile, clean and noisy.
+  const Polygon2 face = sim::face_profile_outline(400);
+  const std::vector<std::pair<std::string, Eigen::MatrixX2d>> inputs = {
+      {"chalice vertices", sim::chalice_outline(160).vertices},
+      {"face samples", sim::sample_outline(face, 300, 1)},
+      {"noisy face samples", sim::sample_outline(face, 300, 2, 0.002)},
+  };
+  for (const auto& [name, P] : inputs) {
+    const CurveReconstruction r = reconstruct_curve(P);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << name;
+    EXPECT_EQ(r.polygon.size(), P.rows()) << name;
+    EXPECT_TRUE(is_simple(r.polygon)) << name;
+    EXPECT_GT(twice_signed_area(r.polygon), 0.0) << name;
+    EXPECT_NEAR(twice_signed_area(r.polygon) / 2.0, r.statistics.enclosed_measure, 1e-9) << name;
+  }
+  // The chalice's vertices are dense enough that the answer is the outline.
+  const Polygon2 chalice = sim::chalice_outline(160);
+  const CurveReconstruction r = reconstruct_curve(chalice.vertices);
+  EXPECT_NEAR(twice_signed_area(r.polygon), twice_signed_area(chalice), 1e-9);
 }
 
 TEST(Constriction2, RandomPointSetsAlwaysGiveSimplePolygons) {
