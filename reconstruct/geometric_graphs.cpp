@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -146,10 +147,55 @@ Eigen::MatrixX2i closest_pairs(const Eigen::MatrixX2d& V) {
   return to_matrix(out);
 }
 
+namespace {
+
+// α(a)-shape for a > 0 (Definitions 2.12–2.14): edges ij with a disc of radius
+// R = 1/a through i and j that holds every point, i.e. the arcs of the
+// intersection of the discs of radius R around the points. A disc holds all
+// points iff it holds the hull vertices, so only those are visited. For each
+// hull vertex i the centres on the circle of radius R around i that are within
+// R of vertex k form an arc of half-width acos(|ik|/2R) towards k; all these
+// arcs are shorter than π, so their intersection is one arc, and the vertices
+// bounding it are i's neighbours in the shape. O(H²) for H hull vertices; the
+// angles are double constructions.
+Eigen::MatrixX2i furthest_point_alpha_shape_edges(const Eigen::MatrixX2d& V, double R) {
+  const Delaunay d = delaunay(V);
+  std::vector<int> hull;
+  for (const Edge& e : d.hull) hull.insert(hull.end(), e.begin(), e.end());
+  std::sort(hull.begin(), hull.end());
+  hull.erase(std::unique(hull.begin(), hull.end()), hull.end());
+  std::vector<Edge> out;
+  const auto angle = [&](int from, int to) { return std::atan2(V(to, 1) - V(from, 1), V(to, 0) - V(from, 0)); };
+  for (const int i : hull) {
+    struct Arc { int k; double lo, hi; };
+    std::vector<Arc> arcs;
+    double reference = 0.0, lo = -INFINITY, hi = INFINITY;
+    for (const int k : hull) {
+      if (k == i) continue;
+      const double distance = (V.row(k) - V.row(i)).norm();
+      if (distance > 2.0 * R) { lo = INFINITY; break; }  // no disc of radius R holds both
+      if (arcs.empty()) reference = angle(i, k);
+      const double centre = std::remainder(angle(i, k) - reference, 2.0 * std::numbers::pi);
+      const double half_width = std::acos(std::min(1.0, distance / (2.0 * R)));
+      arcs.push_back({k, centre - half_width, centre + half_width});
+      lo = std::max(lo, centre - half_width);
+      hi = std::min(hi, centre + half_width);
+    }
+    if (arcs.empty() || lo > hi) continue;
+    const double tolerance = 1e-12 * std::numbers::pi;  // ties of co-circular points
+    for (const Arc& arc : arcs)
+      if (arc.lo >= lo - tolerance || arc.hi <= hi + tolerance) out.push_back({std::min(i, arc.k), std::max(i, arc.k)});
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return to_matrix(out);
+}
+
+}  // namespace
+
 Eigen::MatrixX2i alpha_shape_edges(const Eigen::MatrixX2d& V, double a) {
-  if (!(a <= 0))
-    throw InvalidInput("alpha_shape_edges: a = " + std::to_string(a) +
-                       " > 0 (the furthest-point α-shape) is not supported; use a ≤ 0");
+  if (std::isnan(a)) throw InvalidInput("alpha_shape_edges: a is not a number");
+  if (a > 0) return furthest_point_alpha_shape_edges(V, 1.0 / a);
   if (a == 0) return convex_hull_edges(V);
   Eigen::MatrixX2i E;
   Eigen::MatrixX2d LH;

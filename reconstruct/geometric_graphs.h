@@ -45,12 +45,14 @@ Eigen::MatrixX2i nearest_neighbor_graph(const Eigen::MatrixX2d& V);
 /// Definition 2.3: every pair at the minimum distance.
 Eigen::MatrixX2i closest_pairs(const Eigen::MatrixX2d& V);
 
-/// Definitions 2.12–2.14 for a ≤ 0: edges ij with an empty open generalized
-/// disc of radius 1/|a| touching i and j (a = 0: half-plane, the convex hull).
-/// The radius test is a double construction (t = 1 - r|a| against the pencil
-/// bounds of gamma_pencil_bounds). a > 0 (the furthest-point α-shape) throws
-/// InvalidInput: not implemented. Note: the thesis text says a ≥ 0 gives the
-/// closest-point subgraph; with Definition 2.12 it is a ≤ 0 (empty discs).
+/// Definitions 2.12–2.14, the α(a)-shape. a < 0: edges ij with an empty open
+/// disc of radius 1/|a| touching i and j (the closest-point α-shape, a
+/// subgraph of DT); a = 0: the convex hull; a > 0: edges ij on a disc of
+/// radius 1/a that holds every point (the furthest-point α-shape, on hull
+/// vertices only; O(H²) for H hull vertices). Radius tests are double
+/// constructions (for a < 0 against the pencil bounds of gamma_pencil_bounds).
+/// Note: the thesis text says a ≥ 0 gives the closest-point subgraph; with
+/// Definition 2.12 it is a ≤ 0 (empty discs).
 Eigen::MatrixX2i alpha_shape_edges(const Eigen::MatrixX2d& V, double a);
 
 enum class BetaNeighborhood { lune, circle };

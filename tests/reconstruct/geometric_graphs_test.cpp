@@ -154,7 +154,39 @@ TEST(GeometricGraphs, AlphaShape) {
     EXPECT_FALSE(subset(hull, mid));  // long hull edges need bigger discs
     EXPECT_TRUE(edges(alpha_shape_edges(V, -1e9)).empty());  // radius 1e-9: no disc touches two points
   }
-  test::expect_error<InvalidInput>([] { alpha_shape_edges(random_points(5, 0), 1); }, {"not supported"});
+}
+
+// Brute force for a > 0: both discs of radius R through i and j, each
+// checked against every point.
+Edges furthest_alpha_reference(const Eigen::MatrixX2d& V, double R) {
+  Edges out;
+  for (Eigen::Index i = 0; i < V.rows(); ++i)
+    for (Eigen::Index j = i + 1; j < V.rows(); ++j) {
+      const Eigen::Vector2d p = V.row(i), q = V.row(j), m = (p + q) / 2, u = (q - p).normalized();
+      const double half = (q - p).norm() / 2;
+      if (half > R) continue;
+      const Eigen::Vector2d normal(-u.y(), u.x());
+      for (const double side : {-1.0, 1.0}) {
+        const Eigen::Vector2d c = m + side * std::sqrt(R * R - half * half) * normal;
+        if (((V.rowwise() - c.transpose()).rowwise().norm().array() <= R * (1 + 1e-12)).all()) {
+          out.push_back({static_cast<int>(i), static_cast<int>(j)});
+          break;
+        }
+      }
+    }
+  return out;
+}
+
+TEST(GeometricGraphs, FurthestPointAlphaShapeEqualsBruteForce) {
+  for (unsigned seed = 0; seed < 20; ++seed) {
+    const auto V = random_points(40, seed);
+    for (const double R : {0.6, 0.75, 1.0, 3.0}) {
+      EXPECT_EQ(edges(alpha_shape_edges(V, 1.0 / R)), furthest_alpha_reference(V, R)) << seed << " R " << R;
+    }
+    EXPECT_EQ(edges(alpha_shape_edges(V, 1e-9)), edges(convex_hull_edges(V)));  // radius 1e9: half-planes
+    EXPECT_TRUE(edges(alpha_shape_edges(V, 10)).empty());  // radius 0.1 holds no two far points
+  }
+  test::expect_error<InvalidInput>([] { alpha_shape_edges(random_points(5, 0), NAN); }, {"not a number"});
 }
 
 TEST(GeometricGraphs, DegenerateInput) {
