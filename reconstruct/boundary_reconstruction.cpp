@@ -38,6 +38,8 @@ Eigen::Matrix<double, Eigen::Dynamic, D> distinct(const Eigen::Matrix<double, Ei
 
 // Kept faces given by input indices, renumbered to the distinct points.
 ReconstructionOptions renumbered(const ReconstructionOptions& options, const std::vector<Eigen::Index>& map) {
+  if (options.voronoi_skeleton && options.constriction.keep.rows() > 0)
+    throw InvalidInput("faces to keep (§5.7) apply to constriction, not to the Voronoi skeleton method");
   ReconstructionOptions out = options;
   for (Eigen::Index k = 0; k < out.constriction.keep.rows(); ++k)
     for (Eigen::Index i = 0; i < out.constriction.keep.cols(); ++i) {
@@ -135,7 +137,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
     constriction.guide_c1 = options.guide->c1;
     constriction.guide_c0 = options.guide->c0;
   }
-  Constriction<3> c = constrict(dt, constriction);
+  Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton) : constrict(dt, constriction);
   s.guide_faces = c.guide_faces;
   s.constriction_seconds = seconds_since(start);
 
@@ -182,7 +184,8 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   const DelaunayComplex<2> dt = delaunay_complex(scaled);
   s.delaunay_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  Constriction<2> c = constrict(dt, options.constriction);
+  Constriction<2> c =
+      options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton) : constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);
   if (!c.all_on_boundary && options.augment) {
     start = std::chrono::steady_clock::now();

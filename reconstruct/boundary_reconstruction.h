@@ -8,6 +8,7 @@
 #include "reconstruct/augmentation.h"
 #include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
+#include "reconstruct/voronoi_skeleton.h"
 
 #include <optional>
 #include <vector>
@@ -27,6 +28,10 @@ struct GuideOptions {
 
 struct ReconstructionOptions {
   ConstrictionOptions constriction;
+  /// Set: the shortest Voronoi skeleton (§4.3.4) instead of constriction,
+  /// the comparison baseline of §5.6 (the constriction options other than
+  /// the progress callback do not apply; augmentation and flips do).
+  std::optional<VoronoiSkeletonOptions> voronoi_skeleton;
   /// 3D: keep the faces the γ-graph marks as outside; nullopt: plain thesis constriction.
   std::optional<GuideOptions> guide = GuideOptions{};
   /// When constriction locks, carve on with triangles (2D) or tetrahedra (3D)

@@ -286,7 +286,6 @@ class Constrictor {
   // boundary, its other faces become boundary.
   void remove(int c) {
     kept_[static_cast<std::size_t>(c)] = 0;
-    ++removed_;
     for (int i = 0; i <= D; ++i) {
       const int n = dt_.neighbors(c, i);
       if (n < 0 || !kept_[static_cast<std::size_t>(n)]) {
@@ -303,28 +302,7 @@ class Constrictor {
   }
 
   Constriction<D> result() const {
-    Constriction<D> out;
-    std::vector<Eigen::Matrix<int, 1, D>> faces;
-    for (int c = 0; c < cells_; ++c) {
-      if (!kept_[static_cast<std::size_t>(c)]) continue;
-      for (int i = 0; i <= D; ++i) {
-        if (!boundary_face(c, i)) continue;
-        Eigen::Matrix<int, 1, D> f;
-        if constexpr (D == 2) {
-          f << vertex(c, (i + 1) % 3), vertex(c, (i + 2) % 3);
-        } else {
-          f << vertex(c, kFace3[i][0]), vertex(c, kFace3[i][1]), vertex(c, kFace3[i][2]);
-        }
-        faces.push_back(f);
-      }
-    }
-    out.boundary.resize(static_cast<Eigen::Index>(faces.size()), D);
-    for (std::size_t k = 0; k < faces.size(); ++k) out.boundary.row(static_cast<Eigen::Index>(k)) = faces[k];
-    out.kept = kept_;
-    for (Eigen::Index v = 0; v < dt_.points.rows(); ++v)
-      if (!on_boundary_[static_cast<std::size_t>(v)]) out.interior_vertices.push_back(static_cast<int>(v));
-    out.removed_cells = removed_;
-    out.all_on_boundary = out.interior_vertices.empty();
+    Constriction<D> out = pruned_boundary(dt_, kept_);
     out.guide_faces = guided_;
     return out;
   }
@@ -338,13 +316,44 @@ class Constrictor {
   Eigen::Index boundary_vertices_ = 0;
   EdgeCounter edges_;
   std::priority_queue<Candidate> heap_;
-  std::size_t removed_ = 0;
   // Bit i: the face opposite vertex i must stay; guide bits are filled in
   // lazily by fixed(), hence mutable.
   mutable std::vector<std::uint8_t> fixed_;
   mutable std::vector<std::uint8_t> guide_known_;
   mutable std::size_t guided_ = 0;
 };
+
+template <int D>
+Constriction<D> pruned_boundary_of(const DelaunayComplex<D>& dt, std::vector<char> kept) {
+  Constriction<D> out;
+  std::vector<char> on_boundary(static_cast<std::size_t>(dt.points.rows()), 0);
+  std::vector<Eigen::Matrix<int, 1, D>> faces;
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
+    if (!kept[static_cast<std::size_t>(c)]) {
+      ++out.removed_cells;
+      continue;
+    }
+    for (int i = 0; i <= D; ++i) {
+      const int n = dt.neighbors(c, i);
+      if (n >= 0 && kept[static_cast<std::size_t>(n)]) continue;
+      Eigen::Matrix<int, 1, D> f;
+      if constexpr (D == 2) {
+        f << dt.cells(c, (i + 1) % 3), dt.cells(c, (i + 2) % 3);
+      } else {
+        f << dt.cells(c, kFace3[i][0]), dt.cells(c, kFace3[i][1]), dt.cells(c, kFace3[i][2]);
+      }
+      for (int k = 0; k < D; ++k) on_boundary[static_cast<std::size_t>(f(k))] = 1;
+      faces.push_back(f);
+    }
+  }
+  out.boundary.resize(static_cast<Eigen::Index>(faces.size()), D);
+  for (std::size_t k = 0; k < faces.size(); ++k) out.boundary.row(static_cast<Eigen::Index>(k)) = faces[k];
+  out.kept = std::move(kept);
+  for (Eigen::Index v = 0; v < dt.points.rows(); ++v)
+    if (!on_boundary[static_cast<std::size_t>(v)]) out.interior_vertices.push_back(static_cast<int>(v));
+  out.all_on_boundary = out.interior_vertices.empty();
+  return out;
+}
 
 }  // namespace
 
@@ -356,6 +365,14 @@ double gamma_indicator(const DelaunayComplex<2>& complex, int cell, int face) {
 double gamma_indicator(const DelaunayComplex<3>& complex, int cell, int face) {
   const auto p = [&](int k) { return Eigen::Vector3d(complex.points.row(complex.cells(cell, k))); };
   return gamma_indicator(p(kFace3[face][0]), p(kFace3[face][1]), p(kFace3[face][2]), p(face));
+}
+
+Constriction<2> pruned_boundary(const DelaunayComplex<2>& complex, std::vector<char> kept) {
+  return pruned_boundary_of(complex, std::move(kept));
+}
+
+Constriction<3> pruned_boundary(const DelaunayComplex<3>& complex, std::vector<char> kept) {
+  return pruned_boundary_of(complex, std::move(kept));
 }
 
 Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options) {

@@ -66,6 +66,12 @@ struct Constriction {
 Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options = {});
 Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options = {});
 
+/// The pruned graph given by `kept` (one flag per Delaunay cell) as a
+/// constriction result: the oriented faces between kept and removed (or
+/// outside) cells, and the points on none of them.
+Constriction<2> pruned_boundary(const DelaunayComplex<2>& complex, std::vector<char> kept);
+Constriction<3> pruned_boundary(const DelaunayComplex<3>& complex, std::vector<char> kept);
+
 /// The γ-indicator (reconstruct/gamma_indicator.h) of the face of `cell`
 /// opposite its local vertex `face`, with respect to that vertex.
 double gamma_indicator(const DelaunayComplex<2>& complex, int cell, int face);

@@ -58,8 +58,12 @@ class ReconstructCommand final : public Command {
                      "given as C1,C0; or off for the thesis' plain constriction")
         ->capture_default_str();
     cli_->add_option("--method", method_,
-                     "gamma: smallest γ-indicator first (thesis Ch. 5); min-area-change: Expression (4.1) (§4.3.3)")
-        ->check(CLI::IsMember({"gamma", "min-area-change"}))
+                     "gamma: smallest γ-indicator first (thesis Ch. 5); min-area-change: Expression (4.1) (§4.3.3); "
+                     "voronoi-skeleton: the shortest Voronoi tree through all points (§4.3.4)")
+        ->check(CLI::IsMember({"gamma", "min-area-change", "voronoi-skeleton"}))
+        ->capture_default_str();
+    cli_->add_option("--seeds", seeds_, "voronoi-skeleton: at most this many seed cells (all when fewer)")
+        ->check(CLI::PositiveNumber)
         ->capture_default_str();
     cli_->add_option("--keep", keep_,
                      "Faces that must stay on the boundary (§5.7): a text file, one face per line as 0-based indices "
@@ -78,6 +82,7 @@ class ReconstructCommand final : public Command {
     if (flips_ == "off") options_.flips.reset();
     configure_guide();
     if (method_ == "min-area-change") options_.constriction.criterion = ConstrictionCriterion::minimal_area_change;
+    if (method_ == "voronoi-skeleton") options_.voronoi_skeleton = VoronoiSkeletonOptions{seeds_};
     configure_augmentation();
     if (interior_) io::check_writable(*interior_, context.overwrite);
     StageTimer read_timer(context.report, "read");
@@ -191,6 +196,7 @@ class ReconstructCommand final : public Command {
   ReconstructionOptions options_;
   std::string augment_ = "auto";
   std::string method_ = "gamma";
+  std::size_t seeds_ = VoronoiSkeletonOptions{}.max_seeds;
   std::string flips_ = "area";
   std::string guide_ = "0.7,0";
   std::optional<std::filesystem::path> keep_, interior_;

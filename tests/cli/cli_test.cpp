@@ -205,6 +205,12 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   EXPECT_EQ(report["result"]["boundary"]["topology"]["simple"], true);
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "c.off") + " --method min-area-change");
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "s.off") + " --method voronoi-skeleton --seeds 50 --report " +
+                  path(dir / "s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["genus"], 0);
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["closed"], true);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --method voodoo").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --augment 0.5").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --guide 2,0").exit_code, 1);

@@ -14,6 +14,7 @@
 #include "sim/shapes.h"
 #include "sim/surface_of_revolution.h"
 #include "test_support.h"
+#include "valid_surface.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -26,31 +27,6 @@ namespace scanstation {
 namespace {
 
 double signed_volume(const TriangleMesh& m) { return enclosed_volume(m.vertices.positions, m.faces); }
-
-// What every constriction result must satisfy, whether or not all points
-// were reached: a closed, oriented 2-manifold of genus 0 whose enclosed
-// volume is that of the kept tetrahedra.
-void expect_valid_surface(const SurfaceReconstruction& r, const std::string& what) {
-  const MeshTopology t = mesh_topology(r.mesh);
-  EXPECT_TRUE(t.closed) << what;
-  EXPECT_TRUE(t.manifold) << what;
-  EXPECT_TRUE(t.oriented) << what;
-  EXPECT_EQ(t.genus, 0) << what;
-  EXPECT_EQ(t.components, 1u) << what;
-  const double volume = signed_volume(r.mesh);
-  EXPECT_GT(volume, 0.0) << what;
-  // The kept tetrahedra fill exactly the enclosed solid (§5.8).
-  double kept = 0.0;
-  for (Eigen::Index t = 0; t < r.interior.rows(); ++t) {
-    const auto p = [&](int k) { return Eigen::Vector3d(r.mesh.vertices.positions.row(r.interior(t, k))); };
-    kept += (p(1) - p(0)).cross(p(2) - p(0)).dot(p(3) - p(0)) / 6.0;
-  }
-  if (r.interior.rows() > 0) {
-    EXPECT_NEAR(volume, kept, 1e-9 * std::abs(volume)) << what;
-  }
-  EXPECT_EQ(t.isolated_vertices, r.statistics.interior_vertices.size()) << what;
-  EXPECT_EQ(self_intersections(r.mesh), std::optional<std::size_t>(0)) << what << ": not simple";
-}
 
 // Points sampled at random over the relief mask (the thesis' Figure 5.6), with
 // and without noise of 0.1% of its size: valid through every point.
