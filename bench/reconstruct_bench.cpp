@@ -66,15 +66,17 @@ void CgalDelaunay3(benchmark::State& state) {
 
 void Reconstruct3(benchmark::State& state) {
   const Eigen::MatrixX3d& P = ellipsoid_points(state.range(0));
-  double delaunay = 0, constriction = 0;
+  double delaunay = 0, constriction = 0, flips = 0;
   for (auto _ : state) {
     const SurfaceReconstruction r = reconstruct_surface(P);
     delaunay += r.statistics.delaunay_seconds;
     constriction += r.statistics.constriction_seconds;
+    flips += r.statistics.flip_seconds;
     if (!r.statistics.all_on_boundary) state.SkipWithError("constriction locked");
   }
   state.counters["delaunay_s"] = benchmark::Counter(delaunay, benchmark::Counter::kAvgIterations);
   state.counters["constriction_s"] = benchmark::Counter(constriction, benchmark::Counter::kAvgIterations);
+  state.counters["flips_s"] = benchmark::Counter(flips, benchmark::Counter::kAvgIterations);
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 

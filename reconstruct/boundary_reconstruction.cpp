@@ -103,6 +103,7 @@ std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
 // How many rows of `wanted` (#K by D vertex indices) are faces of
 // `boundary` (#B by D), as unordered tuples.
 std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& boundary) {
+  if (wanted.rows() == 0) return 0;
   const auto sorted = [](Eigen::VectorXi row) {
     std::sort(row.data(), row.data() + row.size());
     return std::vector<int>(row.data(), row.data() + row.size());

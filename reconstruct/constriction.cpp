@@ -2,13 +2,13 @@
 
 #include "core/errors.h"
 #include "reconstruct/gamma_indicator.h"
+#include "reconstruct/quaternary_heap.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <queue>
 #include <string>
 #include <unordered_map>
 
@@ -315,7 +315,7 @@ class Constrictor {
   std::vector<char> on_boundary_;
   Eigen::Index boundary_vertices_ = 0;
   EdgeCounter edges_;
-  std::priority_queue<Candidate> heap_;
+  QuaternaryHeap<Candidate> heap_;
   // Bit i: the face opposite vertex i must stay; guide bits are filled in
   // lazily by fixed(), hence mutable.
   mutable std::vector<std::uint8_t> fixed_;

@@ -5,6 +5,10 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
@@ -34,6 +38,28 @@ void require_points(Eigen::Index n, int needed, const char* shape) {
                        ", got " + std::to_string(n));
 }
 
+// Inserts (point, index) pairs in spatial (Hilbert) order, each located from
+// the previous vertex, recording the index on the vertex. Sorting the pairs
+// themselves rather than indices into them keeps the sort cache-friendly:
+// this is as fast as CGAL's plain range insertion, where the with-info range
+// insertion is about 30% slower.
+Delaunay2::Face_handle near(Delaunay2::Vertex_handle v) { return v == Delaunay2::Vertex_handle() ? Delaunay2::Face_handle() : v->face(); }
+Delaunay3::Cell_handle near(Delaunay3::Vertex_handle v) { return v == Delaunay3::Vertex_handle() ? Delaunay3::Cell_handle() : v->cell(); }
+
+template <typename Point>
+using FirstOfPair = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
+
+template <typename Traits, typename Triangulation, typename Point>
+void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int>>& input) {
+  CGAL::spatial_sort(input.begin(), input.end(), Traits(FirstOfPair<Point>()));
+  typename Triangulation::Vertex_handle hint;
+  for (const auto& [point, index] : input) {
+    const auto before = dt.number_of_vertices();
+    hint = dt.insert(point, near(hint));
+    if (dt.number_of_vertices() > before) hint->info() = index;  // a repeated point keeps its first index
+  }
+}
+
 }  // namespace
 
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
@@ -42,7 +68,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
   input.reserve(static_cast<std::size_t>(P.rows()));
   for (Eigen::Index i = 0; i < P.rows(); ++i) input.emplace_back(Kernel::Point_2(P(i, 0), P(i, 1)), static_cast<int>(i));
   Delaunay2 dt;
-  dt.insert(input.begin(), input.end());  // spatially sorted insertion
+  insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_2<Kernel, FirstOfPair<Kernel::Point_2>>>(dt, input);
   if (dt.dimension() < 2) throw InvalidInput("all points lie on one line: no polygon encloses them");
 
   DelaunayComplex<2> out;
@@ -67,7 +93,7 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
   for (Eigen::Index i = 0; i < P.rows(); ++i)
     input.emplace_back(Kernel::Point_3(P(i, 0), P(i, 1), P(i, 2)), static_cast<int>(i));
   Delaunay3 dt;
-  dt.insert(input.begin(), input.end());
+  insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(dt, input);
   if (dt.dimension() < 3) throw InvalidInput("all points lie in one plane: no polyhedron encloses them");
 
   DelaunayComplex<3> out;
