@@ -11,8 +11,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <exception>
 #include <string>
-#include <cmath>
+#include <thread>
 
 namespace scanstation {
 
@@ -20,20 +21,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Distinct rows of P (first occurrences, input order), the count dropped,
-// for each input row its distinct row, and for each distinct row its input row.
-template <int D>
-Eigen::Matrix<double, Eigen::Dynamic, D> distinct(const Eigen::Matrix<double, Eigen::Dynamic, D>& P,
-                                                  Eigen::Index& duplicates, std::vector<Eigen::Index>& map,
-                                                  std::vector<Eigen::Index>& first) {
-  Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(P.rows(), 3);
-  padded.leftCols(D) = P;
-  duplicates = unique_points(padded, first, map);
-  Eigen::Matrix<double, Eigen::Dynamic, D> out(static_cast<Eigen::Index>(first.size()), D);
-  for (std::size_t k = 0; k < first.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = P.row(first[k]);
-  return out;
 }
 
 // Kept faces given by input indices, renumbered to the distinct points.
@@ -74,6 +61,53 @@ Eigen::Matrix<double, Eigen::Dynamic, D> unit_scaled(const Eigen::Matrix<double,
 
 void require_finite(const Eigen::MatrixXd& P) {
   if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
+}
+
+// The distinct points and their Delaunay triangulation, found side by side:
+// CGAL's insertion skips a repeated point, so the triangulation of all rows is
+// that of the distinct points, and merging duplicates (a sort) runs on the
+// other core meanwhile. The cells are then renumbered to the distinct points.
+template <int D>
+struct Triangulated {
+  Eigen::Matrix<double, Eigen::Dynamic, D> original;  // distinct points, input values
+  DelaunayComplex<D> dt;                              // over the distinct points, unit-scaled
+};
+
+template <int D>
+Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic, D>& points, BoundaryStatistics& s,
+                                     std::vector<Eigen::Index>& map, std::vector<Eigen::Index>& first) {
+  require_finite(points);
+  s.input_points = points.rows();
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::Matrix<double, Eigen::Dynamic, D> scaled = unit_scaled<D>(points);
+  std::thread merge([&] {
+    Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(points.rows(), 3);
+    padded.leftCols(D) = points;
+    s.duplicates_merged = unique_points(padded, first, map);
+  });
+  Triangulated<D> out;
+  std::exception_ptr failure;
+  try {
+    out.dt = delaunay_complex(scaled);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  merge.join();
+  const auto distinct = static_cast<Eigen::Index>(first.size());
+  if (distinct < D + 1)
+    throw InvalidInput("need at least " + std::to_string(D + 1) + " distinct points for a closed " +
+                       (D == 2 ? "polygon" : "polyhedron") + ", got " + std::to_string(distinct));
+  if (failure) std::rethrow_exception(failure);
+  for (Eigen::Index c = 0; c < out.dt.cells.rows(); ++c)
+    for (int i = 0; i <= D; ++i) out.dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(out.dt.cells(c, i))]);
+  out.original.resize(distinct, D);
+  out.dt.points.resize(distinct, D);
+  for (Eigen::Index k = 0; k < distinct; ++k) {
+    out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
+    out.dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
+  }
+  s.delaunay_seconds = seconds_since(start);
+  return out;
 }
 
 template <int D>
@@ -120,19 +154,16 @@ std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& bound
 }  // namespace
 
 SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& given) {
-  require_finite(points);
   SurfaceReconstruction out;
   BoundaryStatistics& s = out.statistics;
-  s.input_points = points.rows();
   std::vector<Eigen::Index> map;
-  const Eigen::MatrixX3d original = distinct<3>(points, s.duplicates_merged, map, out.source);
-  const Eigen::MatrixX3d P = unit_scaled<3>(original);
+  const Triangulated<3> triangulated = triangulate_distinct<3>(points, s, map, out.source);
+  const Eigen::MatrixX3d& original = triangulated.original;
+  const DelaunayComplex<3>& dt = triangulated.dt;
+  const Eigen::MatrixX3d& P = dt.points;
   const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
-  const DelaunayComplex<3> dt = delaunay_complex(P);
-  s.delaunay_seconds = seconds_since(start);
-  start = std::chrono::steady_clock::now();
   ConstrictionOptions constriction = options.constriction;
   if (options.guide) {
     constriction.guide_c1 = options.guide->c1;
@@ -172,19 +203,16 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
 }
 
 CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const ReconstructionOptions& given) {
-  require_finite(points);
   CurveReconstruction out;
   BoundaryStatistics& s = out.statistics;
-  s.input_points = points.rows();
   std::vector<Eigen::Index> map;
-  out.points = distinct<2>(points, s.duplicates_merged, map, out.source);
+  Triangulated<2> triangulated = triangulate_distinct<2>(points, s, map, out.source);
+  out.points = std::move(triangulated.original);
+  const DelaunayComplex<2>& dt = triangulated.dt;
+  const Eigen::MatrixX2d& scaled = dt.points;
   const ReconstructionOptions options = renumbered(given, map);
-  const Eigen::MatrixX2d scaled = unit_scaled<2>(out.points);
 
   auto start = std::chrono::steady_clock::now();
-  const DelaunayComplex<2> dt = delaunay_complex(scaled);
-  s.delaunay_seconds = seconds_since(start);
-  start = std::chrono::steady_clock::now();
   Constriction<2> c =
       options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton) : constrict(dt, options.constriction);
   s.constriction_seconds = seconds_since(start);

@@ -20,11 +20,12 @@ struct DelaunayComplex {
   Eigen::Matrix<int, Eigen::Dynamic, D + 1> neighbors;
 };
 
-/// Builds the Delaunay triangulation with CGAL (exact predicates; a
-/// consistent symbolic perturbation breaks co-circular / co-spherical ties).
-/// P must hold distinct points (merge duplicates first). Throws InvalidInput
-/// when fewer than D+1 points are given or all lie on a line (2D) or a plane
-/// (3D): then no closed boundary encloses them.
+/// Builds the Delaunay triangulation with CGAL (exact predicates; points
+/// inserted in spatial order). A repeated row is inserted once: the cells then
+/// index whichever copy came first in that order, and the other copies appear
+/// in no cell (merge duplicates first, or renumber the cells). Throws
+/// InvalidInput when fewer than D+1 rows are given or all points lie on a
+/// line (2D) or a plane (3D): then no closed boundary encloses them.
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P);
 DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 
