@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <unordered_map>
 
 namespace scanstation {
 
@@ -112,8 +113,14 @@ class Augmenter {
   }
 
   // The triangle (a, b, c) is in γ([-1,1],[c0,1]) when no point lies in its
-  // open symmetric lens N_γ(c0,c0): two balls of radius r/(1−|c0|) through
-  // its circumcircle, centres on either side (Definition 3.1, Lemma 3.3).
+  // open symmetric lens N_γ(c0,c0): two balls of radius ρ = r/(1−|c0|)
+  // through its circumcircle, centres at ±d·n with d = √(ρ² − r²)
+  // (Definition 3.1, Lemma 3.3). A point at height h above the circumcircle's
+  // plane and s = r² − |q − O|² is in the lens iff s > 2|h|·d, so it blocks
+  // the triangle exactly for d < s/(2|h|): the lens shrinks as c0 falls, and
+  // each triangle has one threshold d*, allowed iff d ≥ d*. Levels only lower
+  // c0, so what one level learnt about d* (a lower bound from the first
+  // blocking point, or d* itself after a full pass) is kept for the next.
   bool in_gamma(int a, int b, int c, double c0) const {
     const Eigen::Vector3d A = surface_.point(a), e1 = surface_.point(b) - A, e2 = surface_.point(c) - A,
                           n = e1.cross(e2);
@@ -121,23 +128,34 @@ class Augmenter {
     if (!(nn > 0)) return false;
     const Eigen::Vector3d O = A + (e1.squaredNorm() * e2.cross(n) + e2.squaredNorm() * n.cross(e1)) / (2.0 * nn);
     const double r = (A - O).norm();
-    const bool open_triangle = c0 <= -1.0;  // the lens degenerates to the open triangle
-    const double rho = open_triangle ? 0.0 : r / (1.0 - std::abs(c0));
-    const double d = std::sqrt(std::max(rho * rho - r * r, 0.0));
+    const Eigen::AlignedBox3d ball(O.array() - r, O.array() + r);
+    if (c0 <= -1.0) {  // the lens degenerates to the open triangle
+      return surface_.points_near(ball, [&](int q) {
+        return q == a || q == b || q == c ||
+               CGAL::orientation(surface_.exact(a), surface_.exact(b), surface_.exact(c), surface_.exact(q)) !=
+                   CGAL::COPLANAR ||
+               !BoundarySurface::Kernel::Triangle_3(surface_.exact(a), surface_.exact(b), surface_.exact(c))
+                    .has_on(surface_.exact(q));
+      });
+    }
+    const double rho = r / (1.0 - std::abs(c0)), d = std::sqrt(std::max(rho * rho - r * r, 0.0));
+    Triangle key{a, b, c};
+    std::sort(key.begin(), key.end());
+    LensThreshold& known = thresholds_[key];
+    if (known.exact || d < known.at_least) return d >= known.at_least;
     const Eigen::Vector3d unit = n / std::sqrt(nn);
-    bool empty = true;
-    surface_.points_near(Eigen::AlignedBox3d(O.array() - r, O.array() + r), [&](int q) {
-      if (!empty || q == a || q == b || q == c) return;
-      const Eigen::Vector3d x = surface_.point(q);
-      if (!open_triangle) {
-        if ((x - (O + d * unit)).norm() < rho && (x - (O - d * unit)).norm() < rho) empty = false;
-      } else if (CGAL::orientation(surface_.exact(a), surface_.exact(b), surface_.exact(c), surface_.exact(q)) ==
-                     CGAL::COPLANAR &&
-                 BoundarySurface::Kernel::Triangle_3(surface_.exact(a), surface_.exact(b), surface_.exact(c))
-                     .has_on(surface_.exact(q))) {
-        empty = false;
-      }
+    double highest = 0.0;
+    const bool empty = surface_.points_near(ball, [&](int q) {
+      if (q == a || q == b || q == c) return true;
+      const Eigen::Vector3d x = surface_.point(q) - O;
+      const double s = r * r - x.squaredNorm(), h = std::abs(x.dot(unit));
+      if (!(s > 0.0)) return true;  // outside the circumball: in no lens
+      const double blocks_below = h > 0.0 ? s / (2.0 * h) : std::numeric_limits<double>::infinity();
+      highest = std::max(highest, blocks_below);
+      return !(blocks_below > d);
     });
+    known.at_least = std::max(known.at_least, highest);
+    known.exact = empty;
     return empty;
   }
 
@@ -162,10 +180,23 @@ class Augmenter {
     surface_.add_face({t[2], t[0], v});
   }
 
+  // What is known of a triangle's lens threshold d* (see in_gamma).
+  struct LensThreshold {
+    double at_least = 0.0;  // d* ≥ this
+    bool exact = false;     // d* = at_least
+  };
+  struct TriangleHash {
+    std::size_t operator()(const Triangle& t) const {
+      return std::hash<std::uint64_t>()((static_cast<std::uint64_t>(t[0]) * 0x9E3779B97F4A7C15ULL) ^
+                                        (static_cast<std::uint64_t>(t[1]) << 21) ^ static_cast<std::uint64_t>(t[2]));
+    }
+  };
+
   const std::vector<std::vector<int>>& adjacency_;
   BoundarySurface surface_;
   std::priority_queue<Carve> heap_;
   std::vector<Triangle> keep_;  // sorted triples
+  mutable std::unordered_map<Triangle, LensThreshold, TriangleHash> thresholds_;
 };
 
 }  // namespace

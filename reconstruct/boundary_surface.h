@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <initializer_list>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -35,9 +36,18 @@ class BoxGrid {
     auto& v = level(l)[key(index(l, box.min()))];
     v.erase(std::remove(v.begin(), v.end(), id), v.end());
   }
-  /// Calls f(id) for (at least) every id whose box may meet `region`.
+  /// Calls f(id) for (at least) every id whose box may meet `region`. When f
+  /// returns bool, false stops the visit; visit returns false then.
   template <typename F>
-  void visit(const Eigen::AlignedBox3d& region, F&& f) const {
+  bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
+    const auto call = [&](int id) {
+      if constexpr (std::is_same_v<std::invoke_result_t<F&, int>, bool>) {
+        return f(id);
+      } else {
+        f(id);
+        return true;
+      }
+    };
     for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
       const auto& cells = levels_[static_cast<std::size_t>(l)];
       if (cells.empty()) continue;
@@ -47,14 +57,19 @@ class BoxGrid {
       grown.min().array() -= size(l);
       if (span(l, grown) > static_cast<double>(cells.size())) {
         for (const auto& [key, ids] : cells)
-          for (const int id : ids) f(id);
+          for (const int id : ids)
+            if (!call(id)) return false;
       } else {
-        for_cells(l, grown, [&](std::uint64_t k) {
+        const bool completed = for_cells(l, grown, [&](std::uint64_t k) {
           if (const auto it = cells.find(k); it != cells.end())
-            for (const int id : it->second) f(id);
+            for (const int id : it->second)
+              if (!call(id)) return false;
+          return true;
         });
+        if (!completed) return false;
       }
     }
+    return true;
   }
 
  private:
@@ -81,11 +96,13 @@ class BoxGrid {
            static_cast<std::uint64_t>(i.z() & 0x1FFFFF);
   }
   template <typename F>
-  void for_cells(int l, const Eigen::AlignedBox3d& box, F&& f) const {
+  bool for_cells(int l, const Eigen::AlignedBox3d& box, F&& f) const {
     const Eigen::Array3i lo = index(l, box.min()), hi = index(l, box.max());
     for (int x = lo.x(); x <= hi.x(); ++x)
       for (int y = lo.y(); y <= hi.y(); ++y)
-        for (int z = lo.z(); z <= hi.z(); ++z) f(key(Eigen::Array3i(x, y, z)));
+        for (int z = lo.z(); z <= hi.z(); ++z)
+          if (!f(key(Eigen::Array3i(x, y, z)))) return false;
+    return true;
   }
   Eigen::Vector3d origin_;
   double cell_;
@@ -127,8 +144,9 @@ class BoundarySurface {
   /// `fresh` improperly.
   bool meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const;
   /// Calls f(q) for the points that may lie in `region`.
+  /// f(q) for the points q near `region`; f may return false to stop early.
   template <typename F>
-  void points_near(const Eigen::AlignedBox3d& region, F&& f) const { points_.visit(region, f); }
+  bool points_near(const Eigen::AlignedBox3d& region, F&& f) const { return points_.visit(region, f); }
 
   /// The alive faces.
   Eigen::MatrixX3i boundary() const;

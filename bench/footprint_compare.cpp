@@ -1,0 +1,119 @@
+// Time and peak memory of the whole reconstruction against CGAL's Delaunay
+// tetrahedralization of the same points (the floor for any Delaunay-based
+// method), each measured in a child process of its own so that peak resident
+// memory (getrusage ru_maxrss) belongs to one job only.
+//
+//   build/bench/footprint_compare [--sizes 10000,100000,1000000] [MESH.off ...]
+//
+// Inputs: points on an ellipsoid (radii 3, 2, 1) of each size, then the
+// vertices of each mesh file. For every input a baseline child only loads
+// the points; "memory" is each job's peak minus that baseline.
+#include "core/io/mesh_io.h"
+#include "reconstruct/boundary_reconstruction.h"
+#include "sim/random.h"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace scanstation;
+
+Eigen::MatrixX3d ellipsoid_points(Eigen::Index n) {
+  sim::Random random(2024);
+  Eigen::MatrixX3d P(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::Vector3d p(random.normal(), random.normal(), random.normal());
+    P.row(i) = (p.normalized().array() * Eigen::Array3d(3, 2, 1)).matrix().transpose();
+  }
+  return P;
+}
+
+struct Measure {
+  double seconds = 0;   // wall time of the job inside the child
+  double peak_mib = 0;  // the child's peak resident memory
+};
+
+// Runs load() then job() in a child; the child reports the job's wall time
+// through a pipe, the kernel reports its peak memory.
+Measure in_child(const std::function<Eigen::MatrixX3d()>& load, const std::function<void(const Eigen::MatrixX3d&)>& job) {
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    const Eigen::MatrixX3d points = load();
+    const auto start = std::chrono::steady_clock::now();
+    job(points);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (write(fds[1], &s, sizeof s) != sizeof s) _exit(1);
+    _exit(0);
+  }
+  close(fds[1]);
+  Measure m;
+  if (read(fds[0], &m.seconds, sizeof m.seconds) != sizeof m.seconds) m.seconds = -1;
+  close(fds[0]);
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  m.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  return m;
+}
+
+void cgal_delaunay(const Eigen::MatrixX3d& P) {
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<Kernel::Point_3> points;
+  points.reserve(static_cast<std::size_t>(P.rows()));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
+  const CGAL::Delaunay_triangulation_3<Kernel> dt(points.begin(), points.end());
+  if (dt.number_of_cells() == 0) std::puts("empty triangulation");
+}
+
+void reconstruct(const Eigen::MatrixX3d& P) {
+  const SurfaceReconstruction r = reconstruct_surface(P);
+  if (!r.statistics.all_on_boundary) std::puts("constriction left points inside");
+}
+
+void row(const std::string& name, const std::function<Eigen::MatrixX3d()>& load) {
+  const Measure base = in_child(load, [](const Eigen::MatrixX3d&) {});
+  const Measure dt = in_child(load, cgal_delaunay), ours = in_child(load, reconstruct);
+  const double dt_mib = dt.peak_mib - base.peak_mib, ours_mib = ours.peak_mib - base.peak_mib;
+  const Eigen::Index n = load().rows();
+  std::printf("%-22s %9lld | %8.3f %8.3f %6.2f | %8.1f %8.1f %6.2f | %7.2f\n", name.c_str(), static_cast<long long>(n),
+              dt.seconds, ours.seconds, ours.seconds / dt.seconds, dt_mib, ours_mib, ours_mib / dt_mib,
+              1e6 * ours.seconds / static_cast<double>(n));
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<Eigen::Index> sizes = {10000, 100000, 1000000};
+  std::vector<std::string> files;
+  for (int a = 1; a < argc; ++a) {
+    if (std::string(argv[a]) == "--sizes" && a + 1 < argc) {
+      sizes.clear();
+      std::stringstream list(argv[++a]);
+      for (std::string item; std::getline(list, item, ',');) sizes.push_back(std::stoll(item));
+    } else {
+      files.emplace_back(argv[a]);
+    }
+  }
+  std::printf("%-22s %9s | %8s %8s %6s | %8s %8s %6s | %7s\n", "input", "points", "DT3 s", "ours s", "ratio",
+              "DT3 MiB", "ours MiB", "ratio", "us/pt");
+  for (const Eigen::Index n : sizes) row("ellipsoid", [n] { return ellipsoid_points(n); });
+  for (const std::string& file : files)
+    row(std::filesystem::path(file).filename().string(), [file] { return io::read_mesh(file).vertices.positions; });
+}
