@@ -1,7 +1,9 @@
 #include "reconstruct/boundary_svg.h"
 
 #include "core/bounding_box.h"
+#include "core/io/number_text.h"
 #include "core/svg_canvas.h"
+#include "reconstruct/gamma_graph.h"
 
 #include <algorithm>
 #include <array>
@@ -25,6 +27,13 @@ Eigen::MatrixX2i edges_of(const Eigen::MatrixX3i& T) {
 
 std::string boundary_svg(const CurveReconstruction& r) {
   SvgCanvas canvas(bounding_box(r.points));
+  // After augmentation (§5.4, Figure 5.7) the graph constricted was
+  // γ([-1,1],[c0,1]): its extra edges beyond the Delaunay ones, thin.
+  if (r.statistics.c0_used) {
+    GammaRange range;
+    range.c2 = *r.statistics.c0_used;
+    canvas.segments(r.points, gamma_graph(r.points, range), SvgStyle{"#d0b0d0", "none", 0.5, 0.0, "2 3"});
+  }
   canvas.segments(r.points, edges_of(r.delaunay), SvgStyle{"#b0b0b0", "none", 0.8, 0.0, "4 3"});
   canvas.segments(r.points, edges_of(r.interior), SvgStyle{"#7f9cc7", "none", 0.8, 0.0, ""});
   canvas.polygon(r.polygon.vertices, SvgStyle{"#1f4e9c", "#dce6f580", 2.2, 0.0, ""});
@@ -33,8 +42,13 @@ std::string boundary_svg(const CurveReconstruction& r) {
     inside.row(static_cast<Eigen::Index>(k)) = r.points.row(r.statistics.interior_vertices[k]);
   canvas.points(r.polygon.vertices, SvgStyle{"none", "#c0392b", 0.0, 2.5, ""});
   canvas.points(inside, SvgStyle{"none", "black", 0.0, 3.0, ""});
-  canvas.caption(std::to_string(r.points.rows()) + " points, " + std::to_string(r.polygon.size()) +
-                 " on the boundary; dashed: removed Delaunay edges");
+  std::string caption = std::to_string(r.points.rows()) + " points, " + std::to_string(r.polygon.size()) +
+                        " on the boundary; dashed: removed Delaunay edges";
+  if (r.statistics.c0_used) {
+    caption += "; dotted: γ([-1,1],[c0,1]), c0 = ";
+    io::append_double(caption, *r.statistics.c0_used);
+  }
+  canvas.caption(caption);
   return canvas.str();
 }
 

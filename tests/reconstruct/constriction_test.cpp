@@ -7,6 +7,7 @@
 #include "core/self_intersections.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/boundary_svg.h"
 #include "sim/outlines.h"
 #include "sim/random.h"
 #include "sim/relief_mask.h"
@@ -299,6 +300,9 @@ TEST(Constriction2, RandomPointSetsAlwaysGiveSimplePolygons) {
     const CurveReconstruction r = reconstruct_curve(P);
     EXPECT_TRUE(r.statistics.all_on_boundary) << trial;
     EXPECT_EQ(r.polygon.size(), n) << trial;
+    if (r.statistics.c0_used) {  // Figure 5.7: the augmented graph is drawn and named
+      EXPECT_NE(boundary_svg(r).find("c0 = "), std::string::npos) << trial;
+    }
     EXPECT_TRUE(is_simple(r.polygon)) << trial;
     EXPECT_GT(twice_signed_area(r.polygon), 0.0) << trial;
   }
