@@ -42,19 +42,20 @@ Eigen::AlignedBox3d BoundarySurface::box(std::initializer_list<int> ids) const {
 int BoundarySurface::add_face(const Triangle& t) {
   const int id = static_cast<int>(faces_.size());
   faces_.push_back(t);
+  face_boxes_.push_back(box({t[0], t[1], t[2]}));
   alive_.push_back(1);
   for (const int v : t) {
     faces_at_[static_cast<std::size_t>(v)].push_back(id);
     on_boundary_[static_cast<std::size_t>(v)] = 1;
   }
-  faces_grid_.insert(id, box({t[0], t[1], t[2]}));
+  faces_grid_.insert(id, face_boxes_.back());
   return id;
 }
 
 void BoundarySurface::remove_face(int id) {
   alive_[static_cast<std::size_t>(id)] = 0;
   const Triangle& t = faces_[static_cast<std::size_t>(id)];
-  faces_grid_.erase(id, box({t[0], t[1], t[2]}));
+  faces_grid_.erase(id, face_boxes_[static_cast<std::size_t>(id)]);
   for (const int v : t) {
     auto& at = faces_at_[static_cast<std::size_t>(v)];
     at.erase(std::remove(at.begin(), at.end(), id), at.end());
@@ -96,13 +97,11 @@ bool BoundarySurface::improper(const Triangle& s, const Triangle& t) const {
 bool BoundarySurface::point_in_tetrahedron(int a, int b, int c, int d) const {
   const Kernel::Tetrahedron_3 tetra(exact(a), exact(b), exact(c), exact(d));
   const Eigen::AlignedBox3d region = box({a, b, c, d});
-  bool found = false;
-  points_.visit(region, [&](int q) {
+  return !points_.visit(region, [&](int q) {
     // The box test is only a cheap filter; the exact predicate decides.
-    if (found || q == a || q == b || q == c || q == d || !region.contains(point(q))) return;
-    if (!tetra.has_on_unbounded_side(exact(q))) found = true;
+    if (q == a || q == b || q == c || q == d || !region.contains(point(q))) return true;
+    return tetra.has_on_unbounded_side(exact(q));
   });
-  return found;
 }
 
 bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const {
@@ -112,15 +111,14 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
     boxes.push_back(box({t[0], t[1], t[2]}));
     region.extend(boxes.back());
   }
-  bool meets = false;
-  faces_grid_.visit(region, [&](int g) {
-    if (meets || !alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return;
-    const Triangle& other = face(g);
-    const Eigen::AlignedBox3d other_box = box({other[0], other[1], other[2]});
-    for (std::size_t k = 0; k < fresh.size() && !meets; ++k)
-      if (boxes[k].intersects(other_box) && improper(fresh[k], other)) meets = true;
+  return !faces_grid_.visit(region, [&](int g) {
+    if (!alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return true;
+    const Eigen::AlignedBox3d& other_box = face_boxes_[static_cast<std::size_t>(g)];
+    if (!region.intersects(other_box)) return true;
+    for (std::size_t k = 0; k < fresh.size(); ++k)
+      if (boxes[k].intersects(other_box) && improper(fresh[k], face(g))) return false;
+    return true;
   });
-  return meets;
 }
 
 Eigen::MatrixX3i BoundarySurface::boundary() const {

@@ -157,6 +157,7 @@ class BoundarySurface {
   BoxGrid points_;
   BoxGrid faces_grid_;
   std::vector<Triangle> faces_;
+  std::vector<Eigen::AlignedBox3d> face_boxes_;
   std::vector<char> alive_;
   std::vector<std::vector<int>> faces_at_;
   std::vector<char> on_boundary_;
