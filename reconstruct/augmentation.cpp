@@ -35,6 +35,7 @@ Augmentation run_levels(Carver& carver, std::priority_queue<Carve>& heap, std::v
   for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
     c0 = std::max(c0, options.lowest);
     heap = {};
+    carver.start_level();
     for (const int v : interior) carver.propose(v);
     while (!heap.empty()) {
       const Carve top = heap.top();
@@ -55,7 +56,7 @@ class Augmenter {
  public:
   Augmenter(const Eigen::MatrixX3d& P, const std::vector<std::vector<int>>& adjacency, const Eigen::MatrixX3i& boundary,
             const Eigen::MatrixXi& keep)
-      : adjacency_(adjacency), surface_(P, boundary) {
+      : adjacency_(adjacency), surface_(P, boundary), proposed_below_(static_cast<std::size_t>(P.rows()), 0) {
     for (Eigen::Index k = 0; k < keep.rows(); ++k) {
       Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
       std::sort(t.begin(), t.end());
@@ -69,6 +70,7 @@ class Augmenter {
   }
 
   // The hooks run_levels drives.
+  void start_level() { std::fill(proposed_below_.begin(), proposed_below_.end(), 0); }
   bool on_boundary(int v) const { return surface_.on_boundary(v); }
   bool still_there(const Carve& c) const { return surface_.alive(c.face) && !surface_.on_boundary(c.vertex); }
   void propose_around(int v) {
@@ -94,10 +96,16 @@ class Augmenter {
     return out;
   }
 
+  // Face ids are never reused and a candidate's key depends only on its face
+  // and point, so a point re-proposed after a carve nearby only needs the
+  // faces made since its last proposal at this level.
   void propose(int v) {
+    const int seen = proposed_below_[static_cast<std::size_t>(v)];
+    proposed_below_[static_cast<std::size_t>(v)] = static_cast<int>(surface_.face_slots());
     for (const int u : near(v)) {
       if (!surface_.on_boundary(u)) continue;
       for (const int f : surface_.faces_at(u)) {
+        if (f < seen) continue;
         const Triangle& t = surface_.face(f);
         // v must lie strictly behind the face, inside the solid.
         if (CGAL::orientation(surface_.exact(t[0]), surface_.exact(t[1]), surface_.exact(t[2]), surface_.exact(v)) !=
@@ -197,6 +205,7 @@ class Augmenter {
   std::priority_queue<Carve> heap_;
   std::vector<Triangle> keep_;  // sorted triples
   mutable std::unordered_map<Triangle, LensThreshold, TriangleHash> thresholds_;
+  std::vector<int> proposed_below_;  // per point: faces below this id are in the heap already
 };
 
 }  // namespace
@@ -241,6 +250,7 @@ class Augmenter2 {
   }
 
   // The hooks run_levels drives; an edge is named by its start vertex.
+  void start_level() {}
   bool on_boundary(int v) const { return next_[static_cast<std::size_t>(v)] >= 0; }
   bool still_there(const Carve& c) const { return !on_boundary(c.vertex) && on_boundary(c.face); }
   void propose_around(int v) {
