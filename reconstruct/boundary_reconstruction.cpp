@@ -98,13 +98,18 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
     throw InvalidInput("need at least " + std::to_string(D + 1) + " distinct points for a closed " +
                        (D == 2 ? "polygon" : "polyhedron") + ", got " + std::to_string(distinct));
   if (failure) std::rethrow_exception(failure);
-  for (Eigen::Index c = 0; c < out.dt.cells.rows(); ++c)
-    for (int i = 0; i <= D; ++i) out.dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(out.dt.cells(c, i))]);
-  out.original.resize(distinct, D);
-  out.dt.points.resize(distinct, D);
-  for (Eigen::Index k = 0; k < distinct; ++k) {
-    out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
-    out.dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
+  if (distinct < points.rows())  // else the map is the identity
+    for (Eigen::Index c = 0; c < out.dt.cells.rows(); ++c)
+      for (int i = 0; i <= D; ++i) out.dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(out.dt.cells(c, i))]);
+  if (distinct == points.rows()) {
+    out.original = points;  // dt.points are the scaled points already
+  } else {
+    out.original.resize(distinct, D);
+    out.dt.points.resize(distinct, D);
+    for (Eigen::Index k = 0; k < distinct; ++k) {
+      out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
+      out.dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
+    }
   }
   s.delaunay_seconds = seconds_since(start);
   return out;

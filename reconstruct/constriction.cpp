@@ -147,10 +147,15 @@ class Constrictor {
 
   // Line 2: the convex hull is the first boundary.
   void initial_boundary() {
+    std::vector<int> on_hull;
     for (int c = 0; c < cells_; ++c)
       for (int i = 0; i <= D; ++i)
-        if (dt_.neighbors(c, i) < 0) mark_face(c, i, +1);
-    for (int c = 0; c < cells_; ++c) consider(c);
+        if (dt_.neighbors(c, i) < 0) {
+          mark_face(c, i, +1);
+          if (on_hull.empty() || on_hull.back() != c) on_hull.push_back(c);
+        }
+    // Only cells with a face on the hull can be removable yet.
+    for (const int c : on_hull) consider(c);
   }
 
   // Which faces of a kept cell are on the boundary; returns their count.
