@@ -2,7 +2,10 @@
 // the closest existing peer, on the vertices of real closed genus-0 meshes
 // (their original triangles are the known answer).
 //
-//   build/bench/afsr_compare [--noise 0.001] MESH.off ...
+//   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton] MESH.off ...
+//
+// --method picks our side: the thesis' γ-indicator pipeline (default) or
+// one of the comparison baselines of §5.6.
 //
 // Prints one table row per mesh: time, closed / genus, every point on the
 // boundary, triangle recall — for constriction and for AFSR — and the means.
@@ -42,9 +45,9 @@ Row summarise(const TriangleMesh& truth, const Eigen::MatrixX3i& faces, double s
   return row;
 }
 
-Row constriction(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
+Row constriction(const TriangleMesh& truth, const Eigen::MatrixX3d& points, const ReconstructionOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const SurfaceReconstruction r = reconstruct_surface(points);
+  const SurfaceReconstruction r = reconstruct_surface(points, options);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Eigen::MatrixX3i faces = r.mesh.faces;  // back to input numbering (duplicates were merged)
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
@@ -73,10 +76,15 @@ Row advancing_front(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
 
 int main(int argc, char** argv) {
   double noise = 0.0;
+  ReconstructionOptions options;
   std::vector<std::string> files;
   for (int a = 1; a < argc; ++a) {
     if (std::string(argv[a]) == "--noise" && a + 1 < argc) {
       noise = std::stod(argv[++a]);
+    } else if (std::string(argv[a]) == "--method" && a + 1 < argc) {
+      const std::string method = argv[++a];
+      if (method == "min-area-change") options.constriction.criterion = ConstrictionCriterion::minimal_area_change;
+      if (method == "voronoi-skeleton") options.voronoi_skeleton = VoronoiSkeletonOptions{};
     } else {
       files.emplace_back(argv[a]);
     }
@@ -94,7 +102,7 @@ int main(int argc, char** argv) {
       for (Eigen::Index i = 0; i < points.rows(); ++i)
         for (int c = 0; c < 3; ++c) points(i, c) += noise * diagonal * random.normal();
     }
-    const Row ours = constriction(truth, points), afsr = advancing_front(truth, points);
+    const Row ours = constriction(truth, points, options), afsr = advancing_front(truth, points);
     const auto good = [](const Row& r) { return r.closed && r.genus == 0 && r.all_points; };
     ok_ours += good(ours);
     ok_afsr += good(afsr);
