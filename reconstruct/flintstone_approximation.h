@@ -1,0 +1,37 @@
+// Level-ℓ and adaptive flintstone approximations (thesis §7.2.2–7.2.3 and
+// §7.3.2–7.3.3) with the errors of §6.2.
+#pragma once
+
+#include "reconstruct/flintstone_tree2.h"
+
+#include <vector>
+
+namespace scanstation {
+
+/// Errors of an approximation against the original:
+///   e1  max distance of an original vertex to the approximation edge/triangle that replaces it (Error e1)
+///   e2  the same to the edge's line / triangle's plane (Error e2)
+///   e5  max flintstone width max{w1, w2} over the approximating pieces (Error e5, Definitions 7.4/7.6)
+struct ApproximationErrors {
+  double e1 = 0.0;
+  double e2 = 0.0;
+  double e5 = 0.0;
+};
+
+/// vertices  indices into the polygon's vertices, in boundary order
+/// level     deepest tree level used
+struct PolygonApproximation {
+  std::vector<int> vertices;
+  int level = 0;
+  ApproximationErrors errors;
+  std::vector<Chain2> pieces;  ///< the chain each approximation edge replaces
+};
+
+/// The level-ℓ approximation: levels 0 … ℓ of the tree (ℓ = 0: the edge v_i v_j twice).
+PolygonApproximation approximation(const FlintstoneTree2& tree, int level);
+
+/// The adaptive approximation: an edge is refined only while the width of its
+/// flintstone (Error e5) exceeds `max_error`, so the result has e5 ≤ max_error.
+PolygonApproximation adaptive_approximation(const FlintstoneTree2& tree, double max_error);
+
+}  // namespace scanstation
