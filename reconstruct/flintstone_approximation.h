@@ -3,6 +3,7 @@
 #pragma once
 
 #include "reconstruct/flintstone_tree2.h"
+#include "reconstruct/flintstone_tree3.h"
 
 #include <vector>
 
@@ -33,5 +34,23 @@ PolygonApproximation approximation(const FlintstoneTree2& tree, int level);
 /// The adaptive approximation: an edge is refined only while the width of its
 /// flintstone (Error e5) exceeds `max_error`, so the result has e5 ≤ max_error.
 PolygonApproximation adaptive_approximation(const FlintstoneTree2& tree, double max_error);
+
+/// faces   #F by 3 corner triangles v_p v_s v_t of the approximating nodes
+///         (indices into the tree's vertices); void triangles (coalescing
+///         corners) are left out
+/// pieces  the node each triangle approximates, same order
+struct MeshApproximation {
+  Eigen::MatrixX3i faces;
+  int level = 0;
+  ApproximationErrors errors;
+  std::vector<int> pieces;
+};
+
+/// Level-ℓ approximation in 3D: nodes down to depth ℓ + 1 (ℓ = 0: the root
+/// triangle v_i v_j v_k for both halves). At the finest level it is the original.
+MeshApproximation approximation(const FlintstoneTree3& tree, int level);
+
+/// Adaptive approximation in 3D by Error e5 (Definition 7.6): e5 ≤ max_error.
+MeshApproximation adaptive_approximation(const FlintstoneTree3& tree, double max_error);
 
 }  // namespace scanstation

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "reconstruct/flintstone_tree2.h"
+#include "reconstruct/flintstone_tree3.h"
 
 #include <cstddef>
 
@@ -26,5 +27,17 @@ bool inside(const FlintstoneTree2& tree, const Eigen::Vector2d& x, InclusionStat
 
 /// The same answer by testing every edge of the polygon V (#V by 2).
 bool inside_brute_force(const Eigen::MatrixX2d& V, const Eigen::Vector2d& x);
+
+/// True when x lies inside the closed mesh of the tree or on it. The ray is
+/// the segment from x to a far point in a fixed sequence of directions; a
+/// direction that passes exactly through an edge or vertex of a tested
+/// triangle (or lies in its plane) is replaced by the next one. A node's
+/// open polyhedron is replaced (Lemma 6.1) by the fan from its first corner
+/// over its boundary edges: the same boundary, so no cracks, and inside the
+/// node's flintstone when that is an intersection of balls (convex).
+bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStats* stats = nullptr);
+
+/// The same answer by testing every face of the closed mesh (V, F).
+bool inside_brute_force(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::Vector3d& x);
 
 }  // namespace scanstation

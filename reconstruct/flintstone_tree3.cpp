@@ -1,0 +1,532 @@
+#include "reconstruct/flintstone_tree3.h"
+
+#include "core/errors.h"
+#include "reconstruct/smallest_enclosing_ball.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <queue>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace scanstation {
+
+namespace {
+
+using Triple = std::array<int, 3>;
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+std::uint64_t undirected_key(int a, int b) { return edge_key(std::min(a, b), std::max(a, b)); }
+
+/// Face across each edge k (from F(f,k) to F(f,k+1)) of each face f.
+std::vector<int> face_neighbors(const Eigen::MatrixX3i& F) {
+  std::unordered_map<std::uint64_t, int> half_edges;
+  half_edges.reserve(static_cast<std::size_t>(3 * F.rows()));
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (!half_edges.emplace(edge_key(F(f, k), F(f, (k + 1) % 3)), f).second)
+        throw TopologyError("flintstone tree: edge " + std::to_string(F(f, k)) + "–" +
+                            std::to_string(F(f, (k + 1) % 3)) +
+                            " is used twice in the same direction (mesh not manifold or not oriented)");
+  std::vector<int> neighbor(static_cast<std::size_t>(3 * F.rows()));
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = half_edges.find(edge_key(F(f, (k + 1) % 3), F(f, k)));
+      if (it == half_edges.end())
+        throw TopologyError("flintstone tree: the mesh is not closed (edge " + std::to_string(F(f, k)) + "–" +
+                            std::to_string(F(f, (k + 1) % 3)) + " has one face)");
+      neighbor[static_cast<std::size_t>(3 * f + k)] = it->second;
+    }
+  return neighbor;
+}
+
+/// A ball through three vertices holding all vertices (§7.3.2): the smallest
+/// bounding ball when it touches three, otherwise that ball grown away from
+/// its two touching vertices until it touches a third.
+Triple root_corners(const Eigen::MatrixX3d& V, Eigen::Vector3d& center, double& radius) {
+  const EnclosingBall<3> ball = smallest_enclosing_ball<3>(V);
+  center = ball.center;
+  radius = ball.radius;
+  const auto area = [&](int a, int b, int c) {
+    return (V.row(b) - V.row(a)).cross(V.row(c) - V.row(a)).squaredNorm();
+  };
+  Triple best = {-1, -1, -1};
+  double best_area = 0.0;
+  const auto& s = ball.support;
+  for (std::size_t a = 0; a < s.size(); ++a)
+    for (std::size_t b = a + 1; b < s.size(); ++b)
+      for (std::size_t c = b + 1; c < s.size(); ++c)
+        if (area(s[a], s[b], s[c]) > best_area) {
+          best_area = area(s[a], s[b], s[c]);
+          best = {s[a], s[b], s[c]};
+        }
+  if (best[0] >= 0) return best;
+  if (s.size() < 2) throw InvalidInput("flintstone tree: all vertices coincide");
+  const int i = s[0], j = s[1];
+  const Eigen::Vector3d m = 0.5 * (V.row(i) + V.row(j)).transpose();
+  const Eigen::Vector3d axis = (V.row(j) - V.row(i)).transpose().normalized();
+  Eigen::Vector3d away = Eigen::Vector3d::Zero();
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    Eigen::Vector3d u = V.row(v).transpose() - m;
+    u -= u.dot(axis) * axis;
+    if (u.squaredNorm() > away.squaredNorm()) away = u;
+  }
+  if (away.squaredNorm() == 0.0) throw InvalidInput("flintstone tree: all vertices lie on one line");
+  const Eigen::Vector3d d = -away.normalized();
+  const double rho2 = (V.row(i).transpose() - m).squaredNorm();
+  // Centre m + t·d: v stays inside while t ≤ (ρ² − |u|²) / (−2 u·d) for u·d < 0.
+  double t_min = std::numeric_limits<double>::infinity();
+  int k = -1;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    const Eigen::Vector3d u = V.row(v).transpose() - m;
+    const double ud = u.dot(d);
+    if (ud >= 0.0 || v == i || v == j) continue;
+    const double t = std::max(0.0, (rho2 - u.squaredNorm()) / (-2.0 * ud));
+    if (t < t_min) {
+      t_min = t;
+      k = static_cast<int>(v);
+    }
+  }
+  center = m + t_min * d;
+  radius = std::sqrt(rho2 + t_min * t_min);
+  return {i, j, k};
+}
+
+class Builder {
+ public:
+  Builder(FlintstoneTree3& tree, const FlintstoneOptions3& options)
+      : tree_(tree),
+        options_(options),
+        V_(tree.vertices),
+        F_(tree.faces),
+        neighbor_(face_neighbors(tree.faces)),
+        face_mark_(static_cast<std::size_t>(F_.rows()), -1),
+        face_label_(static_cast<std::size_t>(F_.rows()), -1),
+        face_half_(static_cast<std::size_t>(F_.rows()), -1),
+        local_(static_cast<std::size_t>(V_.rows()), -1),
+        boundary_mark_(static_cast<std::size_t>(V_.rows()), -1),
+        next_(static_cast<std::size_t>(V_.rows()), -1),
+        eligible_(static_cast<std::size_t>(V_.rows()), 0) {}
+
+  void run() {
+    FlintstoneNode3 root;
+    Eigen::Vector3d center;
+    double radius = 0.0;
+    root.corners = root_corners(V_, center, radius);
+    const double reach = (V_.rowwise() - center.transpose()).rowwise().norm().maxCoeff();
+    root.stone = ball_flintstone<3>(center, std::max(radius, reach));
+    root.face_count = static_cast<int>(F_.rows());
+    tree_.face_order.resize(static_cast<std::size_t>(F_.rows()));
+    for (int f = 0; f < F_.rows(); ++f) tree_.face_order[static_cast<std::size_t>(f)] = f;
+    tree_.nodes.push_back(root);
+    candidates_.push_back({});
+    for (std::size_t id = 0; id < tree_.nodes.size(); ++id) process(static_cast<int>(id));
+  }
+
+ private:
+  struct Cut {
+    int from, to;
+  };
+
+  Eigen::Vector3d point(int v) const { return V_.row(v).transpose(); }
+  int face_vertex(int f, int k) const { return F_(f, k); }
+  int neighbor(int f, int k) const { return neighbor_[static_cast<std::size_t>(3 * f + k)]; }
+
+  void process(int id) {
+    FlintstoneNode3 node = tree_.nodes[static_cast<std::size_t>(id)];
+    const auto faces = face_range(node);
+    for (const int f : faces) face_mark_[static_cast<std::size_t>(f)] = id;
+    node.first_boundary = static_cast<int>(tree_.boundary.size());
+    for (const int f : faces)
+      for (int k = 0; k < 3; ++k)
+        if (face_mark_[static_cast<std::size_t>(neighbor(f, k))] != id)
+          tree_.boundary.push_back({face_vertex(f, k), face_vertex(f, (k + 1) % 3)});
+    node.boundary_count = static_cast<int>(tree_.boundary.size()) - node.first_boundary;
+    if (id != 0) node.corners = choose_corners(id, node);
+    if (faces.size() == 1) {
+      const int f = faces.front();
+      node.corners = {face_vertex(f, 0), face_vertex(f, 1), face_vertex(f, 2)};
+      node.stone = enclosing_flintstone<3>(V_, {node.corners.begin(), node.corners.end()});
+      tree_.nodes[static_cast<std::size_t>(id)] = node;
+      return;
+    }
+    gather_vertices(faces);
+    std::vector<Cut> cuts;
+    std::vector<Triple> children;
+    if (id == 0) {
+      const auto [i, j, k] = node.corners;
+      cuts = {{i, j}, {j, k}, {k, i}};
+      children = {{i, j, k}, {k, j, i}};
+    } else {
+      for (const int v : vertices_) eligible_[static_cast<std::size_t>(v)] = boundary_mark_[static_cast<std::size_t>(v)] != id;
+      int split = -1;
+      node.stone = flintstone_of<3>(V_, node.corners, vertices_, split, &eligible_);
+      for (const int v : vertices_) eligible_[static_cast<std::size_t>(v)] = 0;
+      plan_split(node, split, cuts, children);
+    }
+    std::vector<int> labels = label_components(faces, cuts);
+    if (labels.empty()) {
+      ++tree_.stats.fallback_splits;
+      labels = halves(faces);
+      children.clear();
+    }
+    for (const int v : vertices_) local_[static_cast<std::size_t>(v)] = -1;
+    make_children(id, node, labels, children);
+  }
+
+  std::vector<int> face_range(const FlintstoneNode3& node) const {
+    const auto begin = tree_.face_order.begin() + node.first_face;
+    return {begin, begin + node.face_count};
+  }
+
+  /// vertices_ (local numbering in local_) and boundary_mark_ for node `id`.
+  void gather_vertices(const std::vector<int>& faces) {
+    vertices_.clear();
+    for (const int f : faces)
+      for (int k = 0; k < 3; ++k) {
+        const int v = face_vertex(f, k);
+        if (local_[static_cast<std::size_t>(v)] >= 0) continue;
+        local_[static_cast<std::size_t>(v)] = static_cast<int>(vertices_.size());
+        vertices_.push_back(v);
+      }
+  }
+
+  /// Marks the boundary vertices of node `id` and links each to the next
+  /// boundary vertex (next_), for walks along the boundary.
+  void mark_boundary(int id, const FlintstoneNode3& node) {
+    for (int e = 0; e < node.boundary_count; ++e) {
+      const auto [a, b] = tree_.boundary[static_cast<std::size_t>(node.first_boundary + e)];
+      boundary_mark_[static_cast<std::size_t>(a)] = id;
+      next_[static_cast<std::size_t>(a)] = b;
+    }
+  }
+
+  /// The boundary path from a to b (both on the boundary), empty when the
+  /// walk does not reach b (a pinched boundary).
+  std::vector<int> boundary_path(const FlintstoneNode3& node, int a, int b) const {
+    std::vector<int> path{a};
+    for (int steps = 0; steps < node.boundary_count && path.back() != b; ++steps)
+      path.push_back(next_[static_cast<std::size_t>(path.back())]);
+    if (path.back() != b) path.clear();
+    return path;
+  }
+
+  /// The corners of a new node: of the candidate triangles its parent
+  /// planned, the one with most vertices on the node's boundary, missing
+  /// corners replaced by far boundary vertices, in boundary order.
+  Triple choose_corners(int id, const FlintstoneNode3& node) {
+    mark_boundary(id, node);
+    const auto on_boundary = [&](int v) { return boundary_mark_[static_cast<std::size_t>(v)] == id; };
+    Triple best = {-1, -1, -1};
+    int best_hits = -1;
+    for (const Triple& c : candidates_[static_cast<std::size_t>(id)]) {
+      int hits = 0;
+      for (const int v : c) hits += on_boundary(v);
+      if (hits > best_hits) {
+        best_hits = hits;
+        best = c;
+      }
+    }
+    std::vector<int> chosen;
+    for (const int v : best)
+      if (v >= 0 && on_boundary(v) && std::find(chosen.begin(), chosen.end(), v) == chosen.end()) chosen.push_back(v);
+    if (chosen.empty()) chosen.push_back(tree_.boundary[static_cast<std::size_t>(node.first_boundary)][0]);
+    while (chosen.size() < 3) {
+      int far = -1;
+      double far_distance = -1.0;
+      for (int e = 0; e < node.boundary_count; ++e) {
+        const int v = tree_.boundary[static_cast<std::size_t>(node.first_boundary + e)][0];
+        if (std::find(chosen.begin(), chosen.end(), v) != chosen.end()) continue;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const int c : chosen) nearest = std::min(nearest, (point(v) - point(c)).squaredNorm());
+        if (nearest > far_distance) {
+          far_distance = nearest;
+          far = v;
+        }
+      }
+      if (far < 0) break;
+      chosen.push_back(far);
+    }
+    while (chosen.size() < 3) chosen.push_back(chosen.back());
+    // Boundary order keeps the approximating triangle oriented like the faces.
+    Triple corners = {chosen[0], chosen[1], chosen[2]};
+    int at = corners[0];
+    for (int steps = 0; steps < node.boundary_count; ++steps) {
+      at = next_[static_cast<std::size_t>(at)];
+      if (at == corners[2]) {
+        std::swap(corners[1], corners[2]);
+        break;
+      }
+      if (at == corners[1]) break;
+    }
+    return corners;
+  }
+
+  /// Corner angle at corners[c] of the approximating triangle.
+  double corner_angle(const Triple& corners, int c) const {
+    const Eigen::Vector3d a = point(corners[static_cast<std::size_t>(c)]);
+    const Eigen::Vector3d u = point(corners[static_cast<std::size_t>((c + 1) % 3)]) - a;
+    const Eigen::Vector3d w = point(corners[static_cast<std::size_t>((c + 2) % 3)]) - a;
+    return std::atan2(u.cross(w).norm(), u.dot(w));
+  }
+
+  /// The vertex of the boundary path a … b that best balances the lengths of
+  /// the two new sides (§7.3.2); -1 when the path is a single edge.
+  int side_split_vertex(const FlintstoneNode3& node, int a, int b, const Triple& corners) const {
+    const std::vector<int> path = boundary_path(node, a, b);
+    if (path.size() < 3) return -1;
+    std::vector<double> along(path.size(), 0.0);
+    for (std::size_t k = 1; k < path.size(); ++k) along[k] = along[k - 1] + (point(path[k]) - point(path[k - 1])).norm();
+    int best = -1;
+    double best_gap = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k + 1 < path.size(); ++k) {
+      if (std::find(corners.begin(), corners.end(), path[k]) != corners.end()) continue;
+      const double gap = std::abs(along.back() - 2.0 * along[k]);
+      if (gap < best_gap) {
+        best_gap = gap;
+        best = path[k];
+      }
+    }
+    return best;
+  }
+
+  /// Algorithm 7.2's refinement of one triangle: a three-split at v_q/v_r, or
+  /// side splits when corner angles are small or P has no interior vertex.
+  void plan_split(const FlintstoneNode3& node, int split, std::vector<Cut>& cuts, std::vector<Triple>& children) {
+    const Triple c = node.corners;
+    std::array<bool, 3> small{};
+    int small_count = 0;
+    for (int k = 0; k < 3; ++k) {
+      small[static_cast<std::size_t>(k)] = corner_angle(c, k) < options_.angle_threshold;
+      small_count += small[static_cast<std::size_t>(k)];
+    }
+    const auto three_split = [&] {
+      ++tree_.stats.three_splits;
+      cuts = {{split, c[0]}, {split, c[1]}, {split, c[2]}};
+      children = {{c[0], c[1], split}, {c[1], c[2], split}, {c[2], c[0], split}};
+    };
+    if (split >= 0 && small_count == 0) return three_split();
+    // Side k runs from c[k] to c[k+1], opposite c[k+2].
+    std::array<int, 3> side_vertex{};
+    for (int k = 0; k < 3; ++k)
+      side_vertex[static_cast<std::size_t>(k)] = side_split_vertex(node, c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % 3)], c);
+    if (small_count == 1) {
+      const int p = static_cast<int>(std::find(small.begin(), small.end(), true) - small.begin());
+      const int m1 = side_vertex[static_cast<std::size_t>(p)], m2 = side_vertex[static_cast<std::size_t>((p + 2) % 3)];
+      const int s = c[static_cast<std::size_t>((p + 1) % 3)], t = c[static_cast<std::size_t>((p + 2) % 3)];
+      const int pv = c[static_cast<std::size_t>(p)];
+      if (m1 >= 0 && m2 >= 0) {  // split at the two sides meeting at the small angle
+        ++tree_.stats.side_splits;
+        cuts = {{m1, m2}, {m1, t}};
+        children = {{pv, m1, m2}, {m1, s, t}, {m1, t, m2}};
+        return;
+      }
+    }
+    // One side: between two small angles, else the side with the best split.
+    int side = -1;
+    for (int k = 0; k < 3; ++k)
+      if (small[static_cast<std::size_t>(k)] && small[static_cast<std::size_t>((k + 1) % 3)] && side_vertex[static_cast<std::size_t>(k)] >= 0) side = k;
+    if (side < 0 && split >= 0) return three_split();
+    for (int k = 0; k < 3 && side < 0; ++k)
+      if (side_vertex[static_cast<std::size_t>(k)] >= 0) side = k;
+    if (side < 0) return;  // nothing to split at: the caller falls back
+    ++tree_.stats.side_splits;
+    const int m = side_vertex[static_cast<std::size_t>(side)];
+    const int a = c[static_cast<std::size_t>(side)], b = c[static_cast<std::size_t>((side + 1) % 3)];
+    const int o = c[static_cast<std::size_t>((side + 2) % 3)];
+    cuts = {{m, o}};
+    children = {{a, m, o}, {m, b, o}};
+  }
+
+  /// Cuts the node's faces along shortest edge paths (Dijkstra inside the
+  /// open polyhedron) and labels the connected pieces; empty when fewer than
+  /// two pieces result.
+  std::vector<int> label_components(const std::vector<int>& faces,
+                                    const std::vector<Cut>& cuts) {
+    if (cuts.empty()) return {};
+    build_adjacency(faces);
+    std::unordered_set<std::uint64_t> cut_edges;
+    for (const Cut& cut : cuts) {
+      const std::vector<int> path = shortest_path(cut.from, cut.to);
+      for (std::size_t k = 1; k < path.size(); ++k) cut_edges.insert(undirected_key(path[k - 1], path[k]));
+    }
+    const auto crossable = [&](int f, int k) {
+      return !cut_edges.count(undirected_key(face_vertex(f, k), face_vertex(f, (k + 1) % 3)));
+    };
+    std::vector<int> labels = flood(faces, crossable);
+    if (*std::max_element(labels.begin(), labels.end()) == 0) labels.clear();
+    return labels;
+  }
+
+  /// Connected components of the node's faces through edges `crossable` allows.
+  template <typename Crossable>
+  std::vector<int> flood(const std::vector<int>& faces, const Crossable& crossable) {
+    for (const int f : faces) face_label_[static_cast<std::size_t>(f)] = -1;
+    int label = 0;
+    std::vector<int> stack;
+    for (const int seed : faces) {
+      if (face_label_[static_cast<std::size_t>(seed)] >= 0) continue;
+      face_label_[static_cast<std::size_t>(seed)] = label;
+      stack.push_back(seed);
+      while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        for (int k = 0; k < 3; ++k) {
+          const int g = neighbor(f, k);
+          if (face_mark_[static_cast<std::size_t>(g)] != face_mark_[static_cast<std::size_t>(f)] ||
+              face_label_[static_cast<std::size_t>(g)] >= 0 || !crossable(f, k))
+            continue;
+          face_label_[static_cast<std::size_t>(g)] = label;
+          stack.push_back(g);
+        }
+      }
+      ++label;
+    }
+    std::vector<int> labels;
+    labels.reserve(faces.size());
+    for (const int f : faces) labels.push_back(face_label_[static_cast<std::size_t>(f)]);
+    return labels;
+  }
+
+  /// Fallback: breadth-first order of the faces, cut in two halves, each
+  /// half's connected pieces a child.
+  std::vector<int> halves(const std::vector<int>& faces) {
+    for (const int f : faces) face_label_[static_cast<std::size_t>(f)] = -1;
+    std::deque<int> queue{faces.front()};
+    face_label_[static_cast<std::size_t>(faces.front())] = 0;
+    std::size_t visited = 0;
+    const std::size_t half = faces.size() / 2;
+    while (!queue.empty()) {
+      const int f = queue.front();
+      queue.pop_front();
+      face_label_[static_cast<std::size_t>(f)] = visited++ < half ? 0 : 1;
+      for (int k = 0; k < 3; ++k) {
+        const int g = neighbor(f, k);
+        if (face_mark_[static_cast<std::size_t>(g)] != face_mark_[static_cast<std::size_t>(f)] ||
+            face_label_[static_cast<std::size_t>(g)] != -1)
+          continue;
+        face_label_[static_cast<std::size_t>(g)] = 2;  // queued
+        queue.push_back(g);
+      }
+    }
+    for (const int f : faces) face_half_[static_cast<std::size_t>(f)] = face_label_[static_cast<std::size_t>(f)];
+    return flood(faces, [&](int f, int k) {
+      return face_half_[static_cast<std::size_t>(f)] == face_half_[static_cast<std::size_t>(neighbor(f, k))];
+    });
+  }
+
+  /// Vertex adjacency (local numbering) over the node's face edges, both
+  /// directions (a boundary edge belongs to one face only).
+  void build_adjacency(const std::vector<int>& faces) {
+    const auto local = [&](int f, int k) { return local_[static_cast<std::size_t>(face_vertex(f, k % 3))]; };
+    offsets_.assign(vertices_.size() + 1, 0);
+    for (const int f : faces)
+      for (int k = 0; k < 3; ++k) offsets_[static_cast<std::size_t>(local(f, k)) + 1] += 2;
+    for (std::size_t k = 1; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+    adjacent_.resize(static_cast<std::size_t>(offsets_.back()));
+    std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
+    for (const int f : faces)
+      for (int k = 0; k < 3; ++k) {
+        adjacent_[static_cast<std::size_t>(fill[static_cast<std::size_t>(local(f, k))]++)] = local(f, k + 1);
+        adjacent_[static_cast<std::size_t>(fill[static_cast<std::size_t>(local(f, k))]++)] = local(f, k + 2);
+      }
+  }
+
+  /// Shortest edge path from → to over the node's faces (Dijkstra), as
+  /// global vertex indices, empty when from = to.
+  std::vector<int> shortest_path(int from, int to) {
+    const int source = local_[static_cast<std::size_t>(from)], target = local_[static_cast<std::size_t>(to)];
+    if (source < 0 || target < 0 || source == target) return {};
+    distance_.assign(vertices_.size(), std::numeric_limits<double>::infinity());
+    previous_.assign(vertices_.size(), -1);
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    distance_[static_cast<std::size_t>(source)] = 0.0;
+    queue.push({0.0, source});
+    while (!queue.empty()) {
+      const auto [d, a] = queue.top();
+      queue.pop();
+      if (a == target) break;
+      if (d > distance_[static_cast<std::size_t>(a)]) continue;
+      const auto visit = [&](int b) {
+        const double nd = d + (point(vertices_[static_cast<std::size_t>(a)]) - point(vertices_[static_cast<std::size_t>(b)])).norm();
+        if (nd < distance_[static_cast<std::size_t>(b)]) {
+          distance_[static_cast<std::size_t>(b)] = nd;
+          previous_[static_cast<std::size_t>(b)] = a;
+          queue.push({nd, b});
+        }
+      };
+      for (int e = offsets_[static_cast<std::size_t>(a)]; e < offsets_[static_cast<std::size_t>(a) + 1]; ++e)
+        visit(adjacent_[static_cast<std::size_t>(e)]);
+    }
+    std::vector<int> path;
+    if (previous_[static_cast<std::size_t>(target)] < 0) return path;
+    for (int v = target; v >= 0; v = previous_[static_cast<std::size_t>(v)]) path.push_back(vertices_[static_cast<std::size_t>(v)]);
+    return path;
+  }
+
+  /// Sorts the node's face range by label and appends one child per label.
+  void make_children(int id, FlintstoneNode3& node, const std::vector<int>& labels, const std::vector<Triple>& children) {
+    const int count = *std::max_element(labels.begin(), labels.end()) + 1;
+    std::vector<int> start(static_cast<std::size_t>(count) + 1, 0);
+    for (const int l : labels) ++start[static_cast<std::size_t>(l) + 1];
+    for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+    const std::vector<int> faces = face_range(node);
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < faces.size(); ++k)
+      tree_.face_order[static_cast<std::size_t>(node.first_face + fill[static_cast<std::size_t>(labels[k])]++)] = faces[k];
+    node.first_child = static_cast<int>(tree_.nodes.size());
+    node.child_count = count;
+    for (int l = 0; l < count; ++l) {
+      FlintstoneNode3 child;
+      child.depth = node.depth + 1;
+      child.first_face = node.first_face + start[static_cast<std::size_t>(l)];
+      child.face_count = start[static_cast<std::size_t>(l) + 1] - start[static_cast<std::size_t>(l)];
+      tree_.nodes.push_back(child);
+      candidates_.push_back(children);
+    }
+    tree_.nodes[static_cast<std::size_t>(id)] = node;
+  }
+
+  FlintstoneTree3& tree_;
+  const FlintstoneOptions3& options_;
+  const Eigen::MatrixX3d& V_;
+  const Eigen::MatrixX3i& F_;
+  std::vector<int> neighbor_;
+  std::vector<int> face_mark_, face_label_, face_half_, local_, boundary_mark_, next_;
+  std::vector<char> eligible_;
+  std::vector<int> vertices_;
+  std::vector<std::vector<Triple>> candidates_;
+  std::vector<int> offsets_, adjacent_, previous_;
+  std::vector<double> distance_;
+};
+
+}  // namespace
+
+int FlintstoneTree3::levels() const {
+  int deepest = 0;
+  for (const FlintstoneNode3& node : nodes) deepest = std::max(deepest, node.depth);
+  return deepest;
+}
+
+std::size_t FlintstoneTree3::storage_bytes() const {
+  return nodes.size() * sizeof(FlintstoneNode3) + face_order.size() * sizeof(int) +
+         boundary.size() * sizeof(std::array<int, 2>);
+}
+
+FlintstoneTree3 flintstone_tree(const TriangleMesh& mesh, const FlintstoneOptions3& options) {
+  if (mesh.face_count() == 0) throw InvalidInput("flintstone tree: the mesh has no faces");
+  FlintstoneTree3 tree;
+  tree.vertices = mesh.vertices.positions;
+  tree.faces = mesh.faces;
+  Builder(tree, options).run();
+  return tree;
+}
+
+}  // namespace scanstation
