@@ -79,13 +79,18 @@ double distance_to_segment_squared(const Vec<D>& c, const Vec<D>& a, const Vec<D
   return (a + t * ab - c).squaredNorm();
 }
 
+}  // namespace
+
 template <int D>
 bool balls_meet(const SignedBall<D>& a, const SignedBall<D>& b) {
   const double reach = a.radius + b.radius;
   return (a.center - b.center).squaredNorm() <= reach * reach * (1.0 + 1e-9);
 }
 
-}  // namespace
+template <int D>
+bool segment_misses(const SignedBall<D>& ball, const Vec<D>& a, const Vec<D>& b) {
+  return distance_to_segment_squared<D>(ball.center, a, b) > ball.radius * ball.radius * (1.0 + 1e-9);
+}
 
 template <int D>
 Flintstone<D> ball_flintstone(const Vec<D>& center, double radius) {
@@ -205,10 +210,8 @@ bool flintstones_meet(const Flintstone<D>& f, const Flintstone<D>& g) {
 
 template <int D>
 bool segment_misses(const Flintstone<D>& f, const Vec<D>& a, const Vec<D>& b) {
-  const auto misses = [&](const SignedBall<D>& ball) {
-    return distance_to_segment_squared<D>(ball.center, a, b) > ball.radius * ball.radius * (1.0 + 1e-9);
-  };
-  return f.is_union ? misses(f.first) && misses(f.second) : misses(f.first) || misses(f.second);
+  return f.is_union ? segment_misses(f.first, a, b) && segment_misses(f.second, a, b)
+                    : segment_misses(f.first, a, b) || segment_misses(f.second, a, b);
 }
 
 #define SCANSTATION_FLINTSTONE(D)                                                                                 \
@@ -217,6 +220,8 @@ bool segment_misses(const Flintstone<D>& f, const Vec<D>& a, const Vec<D>& b) {
                                           const std::vector<char>*);                                              \
   template bool flintstones_meet<D>(const Flintstone<D>&, const Flintstone<D>&);                                  \
   template bool segment_misses<D>(const Flintstone<D>&, const Vec<D>&, const Vec<D>&);                            \
+  template bool segment_misses<D>(const SignedBall<D>&, const Vec<D>&, const Vec<D>&);                            \
+  template bool balls_meet<D>(const SignedBall<D>&, const SignedBall<D>&);                                        \
   template Flintstone<D> ball_flintstone<D>(const Vec<D>&, double);                                               \
   template Flintstone<D> enclosing_flintstone<D>(const Eigen::Matrix<double, Eigen::Dynamic, D>&,                 \
                                                  const std::vector<int>&);

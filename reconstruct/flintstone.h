@@ -82,6 +82,12 @@ bool flintstones_meet(const Flintstone<D>& f, const Flintstone<D>& g);
 template <int D>
 bool segment_misses(const Flintstone<D>& f, const Eigen::Matrix<double, D, 1>& a, const Eigen::Matrix<double, D, 1>& b);
 
+/// The same tests for single balls.
+template <int D>
+bool balls_meet(const SignedBall<D>& a, const SignedBall<D>& b);
+template <int D>
+bool segment_misses(const SignedBall<D>& ball, const Eigen::Matrix<double, D, 1>& a, const Eigen::Matrix<double, D, 1>& b);
+
 /// A flintstone that is a single ball (centre, radius), for the root of a tree
 /// and for original edges/faces in pair tests.
 template <int D>

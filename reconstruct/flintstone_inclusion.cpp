@@ -52,6 +52,7 @@ bool inside(const FlintstoneTree2& tree, const Eigen::Vector2d& x, InclusionStat
         stack.insert(stack.end(), children.begin(), children.end());
         continue;
       }
+      ++count.replacements;
     }
     ++count.crossing_tests;
     const Crossing crossing = ray_crossing(a, b, x);
@@ -106,20 +107,39 @@ Crossing3 segment_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, c
   return Crossing3::degenerate;  // through an edge or a vertex
 }
 
-/// The k-th ray direction: a golden-angle spiral, far from axis-aligned.
+/// The k-th ray direction: a golden-ratio spiral over the sphere, far from
+/// axis-aligned.
 Eigen::Vector3d ray_direction(int k) {
-  const double z = 0.8731 - 0.1379 * k;
+  const double spread = 0.3183 + 0.6180339887498949 * k;
+  const double z = 2.0 * (spread - std::floor(spread)) - 1.0;
   const double angle = 0.4127 + 2.39996322972865332 * k;
   const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
   return {r * std::cos(angle), r * std::sin(angle), z};
 }
 
-/// The far end of the ray from x: beyond the ball (center, radius).
+/// The far end of the ray from x: beyond the ball (center, radius), in the
+/// k-th direction of the spiral.
 Eigen::Vector3d far_point(const Eigen::Vector3d& x, int attempt, const Eigen::Vector3d& center, double radius) {
-  return x + (2.0 * ((x - center).norm() + radius) + 1.0) * ray_direction(attempt % 64 + attempt / 64);
+  const double length = 2.0 * ((x - center).norm() + radius);
+  return x + (length > 0.0 ? length : 1.0) * ray_direction(attempt);
+}
+
+/// For the tree: a ray leaving the root ball about radially (perturbed by the
+/// spiral), the shortest way out, so it meets few flintstones.
+Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen::Vector3d& center, double radius) {
+  const Eigen::Vector3d radial = x - center;
+  const double distance = radial.norm();
+  if (!(distance > 1e-3 * radius)) return far_point(x, attempt, center, radius);
+  const Eigen::Vector3d direction = (radial / distance + 0.3 * ray_direction(attempt)).normalized();
+  // |q − center| ≥ length − distance ≥ 1.5·radius: q lies outside the root ball.
+  return x + (1.5 * radius + 2.0 * distance) * direction;
 }
 
 constexpr int max_attempts = 256;
+
+/// Lemma 6.1 pays off while the fan is short; a long fan costs more than
+/// refining (the children are usually missed by the ray).
+constexpr int fan_limit = 4;
 
 /// One ray through the tree: 0/1 parity, 2 on the boundary, -1 degenerate.
 int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eigen::Vector3d& q, InclusionStats& count) {
@@ -135,6 +155,7 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
     const bool root = stack.back() == 0;
     stack.pop_back();
     if (node.leaf()) {
+      if (segment_misses(node.bound, x, q)) continue;  // x is not on the face either
       const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
       ++count.crossing_tests;
       const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), x, q));
@@ -142,12 +163,19 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
       continue;
     }
     ++count.flintstone_tests;
-    if (root || node.stone.is_union || node.stone.contains(x)) {
+    // The localizing volume is F(P) ∩ bound; when F(P) is a union only the
+    // bound is used (the faces and the fan need not lie in a union of balls).
+    const bool beyond_bound = !node.bound.contains(x);
+    const bool beyond_stone = !node.stone.is_union && !node.stone.contains(x);
+    const bool outside = !root && (beyond_bound || beyond_stone);
+    if (outside && (segment_misses(node.bound, x, q) || (!node.stone.is_union && segment_misses(node.stone, x, q))))
+      continue;  // the node's faces lie in F(P) ∩ bound: no crossing
+    if (!outside || node.boundary_count > fan_limit) {
       for (int c = 0; c < node.child_count; ++c) stack.push_back(node.first_child + c);
       continue;
     }
-    if (segment_misses(node.stone, x, q)) continue;  // the faces lie in the flintstone
     // Lemma 6.1: the fan over the boundary answers for the node's faces.
+    ++count.replacements;
     const Eigen::Vector3d apex = point(node.corners[0]);
     for (int e = 0; e < node.boundary_count; ++e) {
       const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
@@ -168,7 +196,7 @@ bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStat
   ++count.flintstone_tests;
   if (!root.contains(x)) return false;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
-    const int r = tree_parity(tree, x, far_point(x, attempt, root.first.center, root.first.radius), count);
+    const int r = tree_parity(tree, x, outward_point(x, attempt, root.first.center, root.first.radius), count);
     if (r >= 0) return r != 0;
   }
   return inside_brute_force(tree.vertices, tree.faces, x);

@@ -57,16 +57,17 @@ Flintstone<2> chain_stone(const FlintstoneTree2& tree, const Chain2& chain) {
 /// §7.4: refine the bigger of a pair of meeting flintstones until both are
 /// original pieces, then test exactly. `Item` is a tree position, `split`
 /// lists its children into its third argument (none for an original piece),
-/// `size` orders refinement, `stone` bounds it, `exact` tests two leaves.
-template <typename Item, typename Split, typename Size, typename Stone, typename Exact>
+/// `size` orders refinement, `meet` tests their bounding volumes, `exact`
+/// tests two leaves.
+template <typename Item, typename Split, typename Size, typename Meet, typename Exact>
 void traverse_pairs(std::vector<std::pair<Item, Item>> stack, const Split& split, const Size& size,
-                    const Stone& stone, const Exact& exact, bool first_only, IntersectionStats& count) {
+                    const Meet& meet, const Exact& exact, bool first_only, IntersectionStats& count) {
   std::vector<Item> children_a, children_b;
   while (!stack.empty()) {
     const auto [a, b] = stack.back();
     stack.pop_back();
     ++count.flintstone_tests;
-    if (!flintstones_meet(stone(a, 0), stone(b, 1))) continue;
+    if (!meet(a, b)) continue;
     split(a, 0, children_a);
     split(b, 1, children_b);
     if (children_a.empty() && children_b.empty()) {
@@ -104,7 +105,9 @@ std::vector<std::array<int, 2>> intersecting_edges(const FlintstoneTree2& a, con
     for (const Chain2& child : tree.children(tree.nodes[static_cast<std::size_t>(chain.node)])) children.push_back(child);
   };
   const auto size = [](const Chain2& chain, int) { return chain.s - chain.p; };
-  const auto stone = [&](const Chain2& chain, int t) { return chain_stone(*trees[static_cast<std::size_t>(t)], chain); };
+  const auto meet = [&](const Chain2& ca, const Chain2& cb) {
+    return flintstones_meet(chain_stone(a, ca), chain_stone(b, cb));
+  };
   const auto exact = [&](const Chain2& ea, const Chain2& eb) {
     if (!segments_intersect(a.point(ea.p), a.point(ea.s), b.point(eb.p), b.point(eb.s))) return false;
     pairs.push_back({a.vertex(ea.p), b.vertex(eb.p)});
@@ -113,7 +116,7 @@ std::vector<std::array<int, 2>> intersecting_edges(const FlintstoneTree2& a, con
   std::vector<std::pair<Chain2, Chain2>> stack;
   for (const Chain2& ca : a.top_chains())
     for (const Chain2& cb : b.top_chains()) stack.push_back({ca, cb});
-  traverse_pairs(stack, split, size, stone, exact, first_only, count);
+  traverse_pairs(stack, split, size, meet, exact, first_only, count);
   sort_unique(pairs);
   return pairs;
 }
@@ -132,7 +135,10 @@ std::vector<std::array<int, 2>> intersecting_faces(const FlintstoneTree3& a, con
     for (int c = 0; c < node(id, t).child_count; ++c) children.push_back(node(id, t).first_child + c);
   };
   const auto size = [&](int id, int t) { return node(id, t).face_count; };
-  const auto stone = [&](int id, int t) -> const Flintstone<3>& { return node(id, t).stone; };
+  // F(P) ∩ bound localizes each node (see FlintstoneNode3::bound).
+  const auto meet = [&](int na, int nb) {
+    return balls_meet(node(na, 0).bound, node(nb, 1).bound) && flintstones_meet(node(na, 0).stone, node(nb, 1).stone);
+  };
   const auto exact = [&](int na, int nb) {
     const int fa = a.face_order[static_cast<std::size_t>(node(na, 0).first_face)];
     const int fb = b.face_order[static_cast<std::size_t>(node(nb, 1).first_face)];
@@ -140,7 +146,7 @@ std::vector<std::array<int, 2>> intersecting_faces(const FlintstoneTree3& a, con
     pairs.push_back({fa, fb});
     return true;
   };
-  traverse_pairs<int>({{0, 0}}, split, size, stone, exact, first_only, count);
+  traverse_pairs<int>({{0, 0}}, split, size, meet, exact, first_only, count);
   sort_unique(pairs);
   return pairs;
 }

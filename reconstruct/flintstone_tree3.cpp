@@ -121,6 +121,7 @@ class Builder {
     root.corners = root_corners(V_, center, radius);
     const double reach = (V_.rowwise() - center.transpose()).rowwise().norm().maxCoeff();
     root.stone = ball_flintstone<3>(center, std::max(radius, reach));
+    root.bound = root.stone.first;
     root.face_count = static_cast<int>(F_.rows());
     tree_.face_order.resize(static_cast<std::size_t>(F_.rows()));
     for (int f = 0; f < F_.rows(); ++f) tree_.face_order[static_cast<std::size_t>(f)] = f;
@@ -153,10 +154,12 @@ class Builder {
       const int f = faces.front();
       node.corners = {face_vertex(f, 0), face_vertex(f, 1), face_vertex(f, 2)};
       node.stone = enclosing_flintstone<3>(V_, {node.corners.begin(), node.corners.end()});
+      node.bound = node.stone.first;
       tree_.nodes[static_cast<std::size_t>(id)] = node;
       return;
     }
     gather_vertices(faces);
+    if (id != 0) node.bound = enclosing_flintstone<3>(V_, vertices_).first;
     std::vector<Cut> cuts;
     std::vector<Triple> children;
     if (id == 0) {

@@ -30,6 +30,11 @@ struct FlintstoneNode3 {
   int first_child = 0, child_count = 0;        ///< children are consecutive nodes
   /// F(P); for a leaf (one original face) the ball around it, used by pair tests.
   Flintstone<3> stone;
+  /// A ball around P's vertices (centroid, farthest vertex). Not in the
+  /// thesis: a union flintstone (Definition 7.2) can be far larger than P,
+  /// so the operations localize by F(P) ∩ bound — still a bounding volume,
+  /// and convex whenever F(P) is an intersection.
+  SignedBall<3> bound;
 
   bool leaf() const { return child_count == 0; }
 };

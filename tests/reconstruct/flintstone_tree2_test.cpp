@@ -100,12 +100,14 @@ std::vector<Eigen::Vector2d> queries_near(const Eigen::MatrixX2d& V, int count, 
 void expect_inclusion_matches_brute_force(const FlintstoneTree2& tree, int count, std::uint64_t seed,
                                           const std::string& what) {
   int disagreements = 0, inside_count = 0;
+  InclusionStats stats;
   for (const Eigen::Vector2d& x : queries_near(tree.vertices, count, seed)) {
     const bool expected = inside_brute_force(tree.vertices, x);
     inside_count += expected;
-    disagreements += inside(tree, x) != expected;
+    disagreements += inside(tree, x, &stats) != expected;
   }
   EXPECT_EQ(disagreements, 0) << what;
+  EXPECT_GT(stats.replacements, 0u) << what << ": Lemma 6.1 never used";
   EXPECT_GT(inside_count, count / 10) << what << ": the queries should hit both sides";
   EXPECT_LT(inside_count, count) << what;
 }

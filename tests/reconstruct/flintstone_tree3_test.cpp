@@ -94,12 +94,17 @@ std::vector<Eigen::Vector3d> queries_near(const TriangleMesh& mesh, int count, s
 void expect_inclusion_matches_brute_force(const FlintstoneTree3& tree, const TriangleMesh& mesh, int count,
                                           const std::string& what) {
   int disagreements = 0, inside_count = 0;
+  InclusionStats stats;
   for (const Eigen::Vector3d& x : queries_near(mesh, count, 17)) {
     const bool expected = inside_brute_force(mesh.vertices.positions, mesh.faces, x);
     inside_count += expected;
-    disagreements += inside(tree, x) != expected;
+    disagreements += inside(tree, x, &stats) != expected;
   }
   EXPECT_EQ(disagreements, 0) << what;
+  EXPECT_GT(stats.replacements, 0u) << what << ": Lemma 6.1 never used";
+  if (mesh.face_count() >= 1000) {  // hierarchy pays: a small share of the brute-force tests
+    EXPECT_LT(stats.crossing_tests, static_cast<std::size_t>(count * mesh.face_count()) / 20) << what;
+  }
   EXPECT_GT(inside_count, count / 10) << what;
   EXPECT_LT(inside_count, count) << what;
 }
