@@ -149,7 +149,8 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
     if (crossing == Crossing3::once) odd = !odd;
     return crossing == Crossing3::on_boundary ? 2 : crossing == Crossing3::degenerate ? -1 : 0;
   };
-  std::vector<int> stack{0};
+  thread_local std::vector<int> stack;  // reused: no allocation per query
+  stack.assign(1, 0);
   while (!stack.empty()) {
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(stack.back())];
     const bool root = stack.back() == 0;
