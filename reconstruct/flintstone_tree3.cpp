@@ -130,6 +130,17 @@ class Builder {
     for (std::size_t id = 0; id < tree_.nodes.size(); ++id) process(static_cast<int>(id));
   }
 
+  /// Rebuilds the subtree of node `id` (§7.5) over its current face range,
+  /// keeping its corners; the old descendants become unreachable.
+  void rebuild(int id) {
+    candidates_.assign(tree_.nodes.size(), {});
+    candidates_[static_cast<std::size_t>(id)] = {tree_.nodes[static_cast<std::size_t>(id)].corners};
+    tree_.nodes[static_cast<std::size_t>(id)].child_count = 0;
+    const std::size_t first_new = tree_.nodes.size();
+    process(id);
+    for (std::size_t n = first_new; n < tree_.nodes.size(); ++n) process(static_cast<int>(n));
+  }
+
  private:
   struct Cut {
     int from, to;
@@ -512,15 +523,27 @@ class Builder {
 
 }  // namespace
 
+std::vector<int> FlintstoneTree3::reachable() const {
+  std::vector<int> ids{0};
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const FlintstoneNode3& node = nodes[static_cast<std::size_t>(ids[k])];
+    for (int c = 0; c < node.child_count; ++c) ids.push_back(node.first_child + c);
+  }
+  return ids;
+}
+
 int FlintstoneTree3::levels() const {
   int deepest = 0;
-  for (const FlintstoneNode3& node : nodes) deepest = std::max(deepest, node.depth);
+  for (const int id : reachable()) deepest = std::max(deepest, nodes[static_cast<std::size_t>(id)].depth);
   return deepest;
 }
 
 std::size_t FlintstoneTree3::storage_bytes() const {
-  return nodes.size() * sizeof(FlintstoneNode3) + face_order.size() * sizeof(int) +
-         boundary.size() * sizeof(std::array<int, 2>);
+  std::size_t boundary_edges = 0;
+  const std::vector<int> ids = reachable();
+  for (const int id : ids) boundary_edges += static_cast<std::size_t>(nodes[static_cast<std::size_t>(id)].boundary_count);
+  return ids.size() * sizeof(FlintstoneNode3) + face_order.size() * sizeof(int) +
+         boundary_edges * sizeof(std::array<int, 2>);
 }
 
 FlintstoneTree3 flintstone_tree(const TriangleMesh& mesh, const FlintstoneOptions3& options) {
@@ -528,8 +551,48 @@ FlintstoneTree3 flintstone_tree(const TriangleMesh& mesh, const FlintstoneOption
   FlintstoneTree3 tree;
   tree.vertices = mesh.vertices.positions;
   tree.faces = mesh.faces;
-  Builder(tree, options).run();
+  tree.options = options;
+  Builder(tree, tree.options).run();
   return tree;
+}
+
+int insert_vertex(FlintstoneTree3& tree, int face, const Eigen::Vector3d& point) {
+  const int face_count = static_cast<int>(tree.faces.rows());
+  if (face < 0 || face >= face_count)
+    throw InvalidInput("insert_vertex: face " + std::to_string(face) + " outside [0, " + std::to_string(face_count) + ")");
+  // The face becomes three around the new vertex; the two new faces follow it
+  // in face_order, inside every range that holds it.
+  const int v = static_cast<int>(tree.vertices.rows());
+  tree.vertices.conservativeResize(v + 1, 3);
+  tree.vertices.row(v) = point.transpose();
+  const Eigen::RowVector3i old = tree.faces.row(face);
+  tree.faces.conservativeResize(face_count + 2, 3);
+  tree.faces.row(face) << old(0), old(1), v;
+  tree.faces.row(face_count) << old(1), old(2), v;
+  tree.faces.row(face_count + 1) << old(2), old(0), v;
+  const int at = static_cast<int>(std::find(tree.face_order.begin(), tree.face_order.end(), face) - tree.face_order.begin());
+  tree.face_order.insert(tree.face_order.begin() + at + 1, {face_count, face_count + 1});
+  for (FlintstoneNode3& node : tree.nodes) {
+    if (node.first_face > at) node.first_face += 2;
+    else if (node.first_face + node.face_count > at) node.face_count += 2;
+  }
+  // Down the path to the face, to the first volume that misses the vertex.
+  int id = 0;
+  while (true) {
+    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
+    const bool holds = node.stone.contains(point) && node.bound.contains(point);
+    if (!holds || node.leaf()) break;
+    for (int c = 0; c < node.child_count; ++c) {
+      const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(node.first_child + c)];
+      if (child.first_face <= at && at < child.first_face + child.face_count) id = node.first_child + c;
+    }
+  }
+  if (id == 0) {  // outside the root ball: a new tree
+    tree = flintstone_tree(TriangleMesh{PointCloud{tree.vertices, {}, {}, 3}, tree.faces}, tree.options);
+  } else {
+    Builder(tree, tree.options).rebuild(id);
+  }
+  return tree.nodes[static_cast<std::size_t>(id)].face_count;
 }
 
 }  // namespace scanstation

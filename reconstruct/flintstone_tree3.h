@@ -60,8 +60,11 @@ struct FlintstoneTree3 {
   std::vector<int> face_order;             ///< faces of every node are one range of this permutation
   std::vector<std::array<int, 2>> boundary;  ///< directed boundary edges of the nodes' open polyhedra
   FlintstoneBuildStats3 stats;
+  FlintstoneOptions3 options;
 
   const FlintstoneNode3& root() const { return nodes.front(); }
+  /// Ids of the nodes in the tree (insert_vertex leaves replaced ones behind).
+  std::vector<int> reachable() const;
   int levels() const;
   std::size_t storage_bytes() const;
 };
@@ -71,5 +74,14 @@ struct FlintstoneTree3 {
 /// localization tree). Throws TopologyError otherwise, InvalidInput for a
 /// mesh without faces or with all vertices on one line.
 FlintstoneTree3 flintstone_tree(const TriangleMesh& mesh, const FlintstoneOptions3& options = {});
+
+/// Dynamic insertion (§7.5): splits `face` into three around the new vertex
+/// `point` (it becomes the last vertex; the face keeps its index for one of
+/// the three, the other two are appended), then rebuilds the subtree of the
+/// first node on the way down to the face whose volume F(P) ∩ bound no longer
+/// holds the point (the whole tree when it leaves the root ball). Returns the
+/// number of faces of the rebuilt subtree. The face neighbourhood table is
+/// recomputed (linear time); the tree work is local.
+int insert_vertex(FlintstoneTree3& tree, int face, const Eigen::Vector3d& point);
 
 }  // namespace scanstation

@@ -34,8 +34,8 @@ void expect_valid_tree(const FlintstoneTree3& tree, const std::string& what) {
   const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
   std::vector<int> leaf_faces;
   std::size_t outside = 0;
-  for (std::size_t id = 0; id < tree.nodes.size(); ++id) {
-    const FlintstoneNode3& node = tree.nodes[id];
+  for (const int id : tree.reachable()) {
+    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
     for (int k = 0; k < node.face_count; ++k)
       for (int j = 0; j < 3; ++j)
         outside += !node.stone.contains(point(tree.faces(tree.face_order[static_cast<std::size_t>(node.first_face + k)], j)));
@@ -155,6 +155,30 @@ TEST(FlintstoneApproximation3, AdaptiveStaysWithinTheBound) {
     previous = a.faces.rows();
   }
   EXPECT_EQ(approximation(tree, 0).faces.rows(), 2);  // the root triangle, once per side
+}
+
+TEST(FlintstoneTree3, DynamicInsertionRebuildsASubtree) {
+  TriangleMesh mesh = io::read_mesh(test::cgal_data("meshes/cactus.off"));
+  FlintstoneTree3 tree = flintstone_tree(mesh);
+  sim::Random random(5);
+  int local = 0;
+  for (int step = 0; step < 40; ++step) {
+    const int face = static_cast<int>(random.below(static_cast<std::uint64_t>(tree.faces.rows())));
+    const auto corner = [&](int k) { return Eigen::Vector3d(tree.vertices.row(tree.faces(face, k))); };
+    const Eigen::Vector3d normal = (corner(1) - corner(0)).cross(corner(2) - corner(0)).normalized();
+    const double push = step % 10 == 9 ? 0.05 : 1e-4 * random.normal();  // sometimes well off the surface
+    const Eigen::Vector3d x = (corner(0) + corner(1) + corner(2)) / 3.0 + push * normal;
+    const int before = static_cast<int>(tree.faces.rows());
+    const int rebuilt = insert_vertex(tree, face, x);
+    ASSERT_EQ(tree.faces.rows(), before + 2);
+    EXPECT_GE(rebuilt, 3);
+    local += rebuilt < before / 2;
+  }
+  EXPECT_GT(local, 20) << "most insertions should rebuild a small subtree";
+  mesh.vertices.positions = tree.vertices;
+  mesh.faces = tree.faces;
+  expect_valid_tree(tree, "after insertions");
+  expect_inclusion_matches_brute_force(tree, mesh, 1500, "after insertions");
 }
 
 TEST(FlintstoneTree3, RejectsOpenMeshes) {
