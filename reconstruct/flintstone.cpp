@@ -135,6 +135,11 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
   double key_plus = none, key_minus = none;  // over all members
   double best_plus = none, best_minus = none;
   int split_plus = -1, split_minus = -1, split_any = -1;
+  struct Candidate {
+    int vertex, side;
+    double key, height;
+  };
+  std::vector<Candidate> candidates;
   for (const int v : members) {
     if (std::find(corners.begin(), corners.end(), v) != corners.end()) continue;
     const bool may_split = eligible == nullptr || (*eligible)[v];
@@ -149,12 +154,16 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
       minus.push_back(v);
       continue;
     }
-    const double h = s > 0 ? std::max(x.dot(family.n), 1e-300) : std::min(x.dot(family.n), -1e-300);
+    // The exact side decides; a height rounded to the wrong sign or to 0 is
+    // clamped, so the key stays finite (the ball only grows).
+    const double least = 1e-12 * std::sqrt(family.r2);
+    const double h = s > 0 ? std::max(x.dot(family.n), least) : std::min(x.dot(family.n), -least);
     const double key = (x.squaredNorm() - family.r2) / (2.0 * h);
     (s > 0 ? plus : minus).push_back(v);
     double& side_key = s > 0 ? key_plus : key_minus;
     if (std::isnan(side_key) || (s > 0 ? key > side_key : key < side_key)) side_key = key;
     if (!may_split) continue;
+    candidates.push_back({v, s, key, std::abs(h)});
     double& best = s > 0 ? best_plus : best_minus;
     if (std::isnan(best) || (s > 0 ? key > best : key < best)) {
       best = key;
@@ -194,6 +203,20 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
     const double rq = std::copysign(std::sqrt(family.r2 + best_plus * best_plus), best_plus);
     const double rr = std::copysign(std::sqrt(family.r2 + best_minus * best_minus), -best_minus);
     split = rq >= rr ? split_plus : split_minus;
+  }
+  // Near-ties (vertices on about the same ball, e.g. a spherical cap) are
+  // broken by the height over the chord/plane: the split then lands in the
+  // middle of P instead of next to its boundary.
+  if (split >= 0) {
+    const int s = split == split_plus ? 1 : -1;
+    const double best = s > 0 ? best_plus : best_minus;
+    const double tolerance = 0.02 * std::sqrt(family.r2 + best * best);
+    double height = -1.0;
+    for (const Candidate& c : candidates)
+      if (c.side == s && std::abs(c.key - best) <= tolerance && c.height > height) {
+        height = c.height;
+        split = c.vertex;
+      }
   }
   return f;
 }

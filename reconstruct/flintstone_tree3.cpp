@@ -127,7 +127,8 @@ class Builder {
     for (int f = 0; f < F_.rows(); ++f) tree_.face_order[static_cast<std::size_t>(f)] = f;
     tree_.nodes.push_back(root);
     candidates_.push_back({});
-    for (std::size_t id = 0; id < tree_.nodes.size(); ++id) process(static_cast<int>(id));
+    execute(0, prepare(0), {});
+    refine_levels(1);
   }
 
   /// Rebuilds the subtree of node `id` (§7.5) over its current face range,
@@ -137,8 +138,8 @@ class Builder {
     candidates_[static_cast<std::size_t>(id)] = {tree_.nodes[static_cast<std::size_t>(id)].corners};
     tree_.nodes[static_cast<std::size_t>(id)].child_count = 0;
     const std::size_t first_new = tree_.nodes.size();
-    process(id);
-    for (std::size_t n = first_new; n < tree_.nodes.size(); ++n) process(static_cast<int>(n));
+    execute(id, prepare(id), {});
+    refine_levels(first_new);
   }
 
  private:
@@ -150,8 +151,20 @@ class Builder {
   int face_vertex(int f, int k) const { return F_(f, k); }
   int neighbor(int f, int k) const { return neighbor_[static_cast<std::size_t>(3 * f + k)]; }
 
-  void process(int id) {
+  /// What a node will do, decided before its level's side splits are
+  /// propagated to the neighbours (§7.3.2).
+  struct Plan {
+    bool leaf = false;
+    int split = -1;                            ///< v_q / v_r, -1 when P has no interior vertex
+    std::array<int, 3> side_vertex{-1, -1, -1};  ///< balanced vertex of side k (c[k] … c[k+1]), -1: one edge
+    std::array<bool, 3> sides{};               ///< sides the node itself splits
+    bool three = false;                        ///< a three-split at `split`
+  };
+
+  /// Faces, boundary, corners, flintstone and the node's own split decision.
+  Plan prepare(int id) {
     FlintstoneNode3 node = tree_.nodes[static_cast<std::size_t>(id)];
+    Plan plan;
     const auto faces = face_range(node);
     for (const int f : faces) face_mark_[static_cast<std::size_t>(f)] = id;
     node.first_boundary = static_cast<int>(tree_.boundary.size());
@@ -167,23 +180,54 @@ class Builder {
       node.stone = enclosing_flintstone<3>(V_, {node.corners.begin(), node.corners.end()});
       node.bound = node.stone.first;
       tree_.nodes[static_cast<std::size_t>(id)] = node;
-      return;
+      plan.leaf = true;
+      return plan;
     }
-    gather_vertices(faces);
-    if (id != 0) node.bound = enclosing_flintstone<3>(V_, vertices_).first;
+    if (id != 0) {
+      gather_vertices(faces);
+      node.bound = enclosing_flintstone<3>(V_, vertices_).first;
+      for (const int v : vertices_) eligible_[static_cast<std::size_t>(v)] = boundary_mark_[static_cast<std::size_t>(v)] != id;
+      node.stone = flintstone_of<3>(V_, node.corners, vertices_, plan.split, &eligible_);
+      for (const int v : vertices_) {
+        eligible_[static_cast<std::size_t>(v)] = 0;
+        local_[static_cast<std::size_t>(v)] = -1;
+      }
+      for (int k = 0; k < 3; ++k)
+        plan.side_vertex[static_cast<std::size_t>(k)] = side_split_vertex(
+            node, node.corners[static_cast<std::size_t>(k)], node.corners[static_cast<std::size_t>((k + 1) % 3)], node.corners);
+      plan_split(node, plan);
+    }
+    tree_.nodes[static_cast<std::size_t>(id)] = node;
+    return plan;
+  }
+
+  /// Cuts the node as planned — at every side a neighbour splits too
+  /// (`split_sides`: side key → vertex), so shared sides split alike — and
+  /// appends its children.
+  void execute(int id, const Plan& plan, const std::unordered_map<std::uint64_t, int>& split_sides) {
+    if (plan.leaf) return;
+    FlintstoneNode3 node = tree_.nodes[static_cast<std::size_t>(id)];
+    const Triple c = node.corners;
     std::vector<Cut> cuts;
     std::vector<Triple> children;
-    if (id == 0) {
-      const auto [i, j, k] = node.corners;
-      cuts = {{i, j}, {j, k}, {k, i}};
-      children = {{i, j, k}, {k, j, i}};
-    } else {
-      for (const int v : vertices_) eligible_[static_cast<std::size_t>(v)] = boundary_mark_[static_cast<std::size_t>(v)] != id;
-      int split = -1;
-      node.stone = flintstone_of<3>(V_, node.corners, vertices_, split, &eligible_);
-      for (const int v : vertices_) eligible_[static_cast<std::size_t>(v)] = 0;
-      plan_split(node, split, cuts, children);
+    std::array<bool, 3> sides = plan.sides;
+    for (int k = 0; k < 3; ++k) {
+      const auto it = split_sides.find(undirected_key(c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % 3)]));
+      if (it != split_sides.end() && it->second == plan.side_vertex[static_cast<std::size_t>(k)]) sides[static_cast<std::size_t>(k)] = true;
     }
+    if (id == 0) {
+      cuts = {{c[0], c[1]}, {c[1], c[2]}, {c[2], c[0]}};
+      children = {{c[0], c[1], c[2]}, {c[2], c[1], c[0]}};
+    } else if (std::count(sides.begin(), sides.end(), true) > 0) {
+      ++tree_.stats.side_splits;
+      side_split(c, plan.side_vertex, sides, cuts, children);
+    } else if (plan.three) {
+      ++tree_.stats.three_splits;
+      cuts = {{plan.split, c[0]}, {plan.split, c[1]}, {plan.split, c[2]}};
+      children = {{c[0], c[1], plan.split}, {c[1], c[2], plan.split}, {c[2], c[0], plan.split}};
+    }
+    const auto faces = face_range(node);
+    gather_vertices(faces);
     std::vector<int> labels = label_components(faces, cuts);
     if (labels.empty()) {
       ++tree_.stats.fallback_splits;
@@ -192,6 +236,29 @@ class Builder {
     }
     for (const int v : vertices_) local_[static_cast<std::size_t>(v)] = -1;
     make_children(id, node, labels, children);
+  }
+
+  /// Refines all nodes from `begin` on, level by level: every node of a
+  /// level decides first, then the sides any of them splits are split by
+  /// both triangles that share them (no cracks, §7.3.2).
+  void refine_levels(std::size_t begin) {
+    while (begin < tree_.nodes.size()) {
+      const std::size_t end = tree_.nodes.size();
+      std::vector<Plan> plans;
+      plans.reserve(end - begin);
+      std::unordered_map<std::uint64_t, int> split_sides;
+      for (std::size_t id = begin; id < end; ++id) {
+        plans.push_back(prepare(static_cast<int>(id)));
+        const Plan& plan = plans.back();
+        const Triple& c = tree_.nodes[id].corners;
+        for (int k = 0; k < 3; ++k)
+          if (plan.sides[static_cast<std::size_t>(k)])
+            split_sides[undirected_key(c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % 3)])] =
+                plan.side_vertex[static_cast<std::size_t>(k)];
+      }
+      for (std::size_t id = begin; id < end; ++id) execute(static_cast<int>(id), plans[id - begin], split_sides);
+      begin = end;
+    }
   }
 
   std::vector<int> face_range(const FlintstoneNode3& node) const {
@@ -310,52 +377,69 @@ class Builder {
     return best;
   }
 
-  /// Algorithm 7.2's refinement of one triangle: a three-split at v_q/v_r, or
-  /// side splits when corner angles are small or P has no interior vertex.
-  void plan_split(const FlintstoneNode3& node, int split, std::vector<Cut>& cuts, std::vector<Triple>& children) {
+  /// Algorithm 7.2's refinement of one triangle: a three-split at v_q/v_r;
+  /// side splits where corner angles are below the threshold (two sides
+  /// around one small angle, the side between two small ones) or when P has no
+  /// interior vertex.
+  void plan_split(const FlintstoneNode3& node, Plan& plan) const {
     const Triple c = node.corners;
+    const auto& m = plan.side_vertex;
     std::array<bool, 3> small{};
     int small_count = 0;
     for (int k = 0; k < 3; ++k) {
       small[static_cast<std::size_t>(k)] = corner_angle(c, k) < options_.angle_threshold;
       small_count += small[static_cast<std::size_t>(k)];
     }
-    const auto three_split = [&] {
-      ++tree_.stats.three_splits;
-      cuts = {{split, c[0]}, {split, c[1]}, {split, c[2]}};
-      children = {{c[0], c[1], split}, {c[1], c[2], split}, {c[2], c[0], split}};
-    };
-    if (split >= 0 && small_count == 0) return three_split();
-    // Side k runs from c[k] to c[k+1], opposite c[k+2].
-    std::array<int, 3> side_vertex{};
-    for (int k = 0; k < 3; ++k)
-      side_vertex[static_cast<std::size_t>(k)] = side_split_vertex(node, c[static_cast<std::size_t>(k)], c[static_cast<std::size_t>((k + 1) % 3)], c);
+    const auto at = [](int k) { return static_cast<std::size_t>((k + 3) % 3); };
+    if (plan.split >= 0 && small_count == 0) {
+      plan.three = true;
+      return;
+    }
     if (small_count == 1) {
       const int p = static_cast<int>(std::find(small.begin(), small.end(), true) - small.begin());
-      const int m1 = side_vertex[static_cast<std::size_t>(p)], m2 = side_vertex[static_cast<std::size_t>((p + 2) % 3)];
-      const int s = c[static_cast<std::size_t>((p + 1) % 3)], t = c[static_cast<std::size_t>((p + 2) % 3)];
-      const int pv = c[static_cast<std::size_t>(p)];
-      if (m1 >= 0 && m2 >= 0) {  // split at the two sides meeting at the small angle
-        ++tree_.stats.side_splits;
-        cuts = {{m1, m2}, {m1, t}};
-        children = {{pv, m1, m2}, {m1, s, t}, {m1, t, m2}};
+      if (m[at(p)] >= 0 && m[at(p + 2)] >= 0) {
+        plan.sides[at(p)] = plan.sides[at(p + 2)] = true;
         return;
       }
     }
-    // One side: between two small angles, else the side with the best split.
-    int side = -1;
     for (int k = 0; k < 3; ++k)
-      if (small[static_cast<std::size_t>(k)] && small[static_cast<std::size_t>((k + 1) % 3)] && side_vertex[static_cast<std::size_t>(k)] >= 0) side = k;
-    if (side < 0 && split >= 0) return three_split();
-    for (int k = 0; k < 3 && side < 0; ++k)
-      if (side_vertex[static_cast<std::size_t>(k)] >= 0) side = k;
-    if (side < 0) return;  // nothing to split at: the caller falls back
-    ++tree_.stats.side_splits;
-    const int m = side_vertex[static_cast<std::size_t>(side)];
-    const int a = c[static_cast<std::size_t>(side)], b = c[static_cast<std::size_t>((side + 1) % 3)];
-    const int o = c[static_cast<std::size_t>((side + 2) % 3)];
-    cuts = {{m, o}};
-    children = {{a, m, o}, {m, b, o}};
+      if (small[at(k)] && small[at(k + 1)] && m[at(k)] >= 0) {
+        plan.sides[at(k)] = true;
+        return;
+      }
+    if (plan.split >= 0) {
+      plan.three = true;
+      return;
+    }
+    for (int k = 0; k < 3; ++k)
+      if (m[at(k)] >= 0) {
+        plan.sides[at(k)] = true;
+        return;
+      }
+  }
+
+  /// Cuts and child triangles for a split at one, two or three sides
+  /// (Figure 7.10); side k runs from c[k] to c[k+1] and is split at m[k].
+  static void side_split(const Triple& c, const std::array<int, 3>& m, const std::array<bool, 3>& sides,
+                         std::vector<Cut>& cuts, std::vector<Triple>& children) {
+    const auto at = [](int k) { return static_cast<std::size_t>((k + 3) % 3); };
+    const int count = static_cast<int>(std::count(sides.begin(), sides.end(), true));
+    if (count == 3) {
+      cuts = {{m[0], m[1]}, {m[1], m[2]}, {m[2], m[0]}};
+      children = {{c[0], m[0], m[2]}, {m[0], c[1], m[1]}, {m[2], m[1], c[2]}, {m[0], m[1], m[2]}};
+      return;
+    }
+    if (count == 2) {  // the split sides p and p+2 meet at corner p
+      int p = 0;
+      while (!(sides[at(p)] && sides[at(p + 2)])) ++p;
+      const int m1 = m[at(p)], m2 = m[at(p + 2)];
+      cuts = {{m1, m2}, {m1, c[at(p + 2)]}};
+      children = {{c[at(p)], m1, m2}, {m1, c[at(p + 1)], c[at(p + 2)]}, {m1, c[at(p + 2)], m2}};
+      return;
+    }
+    const int k = static_cast<int>(std::find(sides.begin(), sides.end(), true) - sides.begin());
+    cuts = {{m[at(k)], c[at(k + 2)]}};
+    children = {{c[at(k)], m[at(k)], c[at(k + 2)]}, {m[at(k)], c[at(k + 1)], c[at(k + 2)]}};
   }
 
   /// Cuts the node's faces along shortest edge paths (Dijkstra inside the

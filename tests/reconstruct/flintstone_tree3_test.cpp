@@ -127,6 +127,9 @@ TEST(FlintstoneTree3, GeneratedShapesAtAnyScale) {
     const FlintstoneTree3 tree = flintstone_tree(mesh, {threshold});
     expect_valid_tree(tree, "icosphere threshold " + std::to_string(threshold));
     EXPECT_GT(tree.stats.three_splits, 0u);
+    if (threshold > 0.0) {
+      EXPECT_GT(tree.stats.side_splits, 0u);
+    }
   }
 }
 
