@@ -31,6 +31,9 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_info_command(cli));
   commands.push_back(app::make_graph_command(cli));
   commands.push_back(app::make_reconstruct_command(cli));
+  commands.push_back(app::make_approximate_command(cli));
+  commands.push_back(app::make_inside_command(cli));
+  commands.push_back(app::make_intersect_command(cli));
   commands.push_back(app::make_demo_command(cli));
 
   try {

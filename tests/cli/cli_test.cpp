@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -266,6 +267,59 @@ TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
   EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
   EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
   EXPECT_GT(report["triangle_recall"].get<double>(), 0.0);
+}
+
+TEST(Cli, FlintstoneApproximateInsideIntersect) {
+  ScratchFolder dir;
+  // A 2D polygon: a 40-gon with a dent.
+  std::ofstream polygon(dir / "p.xy");
+  for (int k = 0; k < 40; ++k) {
+    const double a = 6.283185307179586 * k / 40, r = k == 10 ? 0.3 : 1.0;
+    polygon << r * std::cos(a) << ' ' << r * std::sin(a) << '\n';
+  }
+  polygon.close();
+  Outcome r = scanstation("approximate " + path(dir / "p.xy") + " --level 2 -o " + path(dir / "a.xy") + " --svg " +
+                          path(dir / "a.svg") + " --report " + path(dir / "r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(slurp(dir / "r.json"));
+  EXPECT_EQ(report["result"]["edges"], 8);
+  EXPECT_EQ(report["tree"]["nodes"], 38);
+  EXPECT_THAT(slurp(dir / "a.svg"), testing::HasSubstr("<polygon"));
+  // Inside: the origin and the dent's mouth are known.
+  std::ofstream queries(dir / "q.xy");
+  queries << "0 0\n0.02 0.6\n5 5\n1 0\n";
+  queries.close();
+  r = scanstation("inside " + path(dir / "p.xy") + " " + path(dir / "q.xy") + " -o " + path(dir / "l.txt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(dir / "l.txt"), "1\n0\n0\n1\n");
+  // 3D: a real mesh, adaptive approximation with balls, and its own vertices inside.
+  const std::string elephant = path(test::cgal_data("meshes/elephant.off"));
+  r = scanstation("approximate " + elephant + " --max-error 0.05 -o " + path(dir / "e.ply") + " --balls " +
+                  path(dir / "b.ply") + " --report " + path(dir / "r3.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LE(nlohmann::json::parse(slurp(dir / "r3.json"))["result"]["errors"]["e5"].get<double>(), 0.05);
+  r = scanstation("inside " + elephant + " " + elephant + " -o " + path(dir / "l3.txt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(dir / "l3.txt").find('0'), std::string::npos);  // vertices lie on the boundary
+  const std::string sphere = path(test::cgal_data("meshes/sphere966.off"));
+  r = scanstation("intersect " + elephant + " " + sphere + " --pairs " + path(dir / "pairs.txt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("boundaries intersect: no"));
+  EXPECT_EQ(slurp(dir / "pairs.txt"), "");
+  r = scanstation("intersect " + elephant + " " + elephant);
+  EXPECT_THAT(r.out, testing::HasSubstr("boundaries intersect: yes"));
+  // The approximation may cut itself or be non-manifold (§7.5): refused as input, exit 2.
+  r = scanstation("inside " + path(dir / "e.ply") + " " + elephant + " -o " + path(dir / "z.txt"));
+  EXPECT_EQ(r.exit_code, 2);
+  // Usage errors exit 1 with a message.
+  r = scanstation("approximate " + elephant + " -o " + path(dir / "x.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--level"));
+  r = scanstation("inside " + elephant + " " + path(dir / "q.xy") + " -o " + path(dir / "y.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("2D points for a 3D boundary"));
+  r = scanstation("intersect " + elephant + " " + path(dir / "p.xy"));
+  EXPECT_EQ(r.exit_code, 1);
 }
 
 }  // namespace

@@ -1,0 +1,125 @@
+// Flintstone trees (thesis Ch. 7) against CGAL on the same meshes and queries:
+//   - build time and storage of the 3D tree, 10k → 1M triangles (icospheres,
+//     plus any meshes given on the command line);
+//   - point-inclusion throughput against AABB_tree + Side_of_triangle_mesh
+//     (same random query points, answers compared);
+//   - mesh–mesh intersection detection against
+//     Polygon_mesh_processing::do_intersect (the mesh against a moved copy).
+//
+//   build/bench/flintstone_bench [--queries N] [--max-subdivisions S] [MESH.off ...]
+//
+// Times are wall-clock seconds of one run; quote them as ratios.
+#include "core/io/mesh_io.h"
+#include "reconstruct/flintstone_inclusion.h"
+#include "reconstruct/flintstone_intersection.h"
+#include "reconstruct/flintstone_tree3.h"
+#include "sim/random.h"
+#include "sim/shapes.h"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/intersection.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace scanstation;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Mesh to_cgal(const TriangleMesh& m) {
+  Mesh mesh;
+  for (Eigen::Index v = 0; v < m.vertex_count(); ++v)
+    mesh.add_vertex(Kernel::Point_3(m.vertices.positions(v, 0), m.vertices.positions(v, 1), m.vertices.positions(v, 2)));
+  for (Eigen::Index f = 0; f < m.face_count(); ++f)
+    mesh.add_face(Mesh::Vertex_index(static_cast<Mesh::size_type>(m.faces(f, 0))),
+                  Mesh::Vertex_index(static_cast<Mesh::size_type>(m.faces(f, 1))),
+                  Mesh::Vertex_index(static_cast<Mesh::size_type>(m.faces(f, 2))));
+  return mesh;
+}
+
+TriangleMesh moved(TriangleMesh m, const Eigen::Vector3d& offset) {
+  m.vertices.positions.rowwise() += offset.transpose();
+  return m;
+}
+
+void run(const std::string& name, const TriangleMesh& mesh, int query_count) {
+  const Eigen::MatrixX3d& V = mesh.vertices.positions;
+  const Eigen::Vector3d lo = V.colwise().minCoeff(), hi = V.colwise().maxCoeff();
+  sim::Random random(7);
+  std::vector<Eigen::Vector3d> queries;
+  for (int k = 0; k < query_count; ++k)
+    queries.push_back(lo + (hi - lo).cwiseProduct(Eigen::Vector3d(random.uniform(), random.uniform(), random.uniform())));
+
+  auto start = std::chrono::steady_clock::now();
+  const FlintstoneTree3 tree = flintstone_tree(mesh);
+  const double build = seconds_since(start);
+  const Mesh cgal = to_cgal(mesh);
+  start = std::chrono::steady_clock::now();
+  AabbTree aabb(faces(cgal).first, faces(cgal).second, cgal);
+  aabb.accelerate_distance_queries();
+  CGAL::Side_of_triangle_mesh<Mesh, Kernel, CGAL::Default, AabbTree> side(aabb);
+  const double aabb_build = seconds_since(start);
+
+  std::vector<char> ours(queries.size()), theirs(queries.size());
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < queries.size(); ++k) ours[k] = inside(tree, queries[k]);
+  const double ours_s = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < queries.size(); ++k)
+    theirs[k] = side(Kernel::Point_3(queries[k].x(), queries[k].y(), queries[k].z())) != CGAL::ON_UNBOUNDED_SIDE;
+  const double theirs_s = seconds_since(start);
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < queries.size(); ++k) differ += ours[k] != theirs[k];
+
+  // Detection against a copy moved by a tenth of the size (surfaces cross).
+  const TriangleMesh other = moved(mesh, 0.1 * (hi - lo));
+  const FlintstoneTree3 other_tree = flintstone_tree(other);
+  const Mesh other_cgal = to_cgal(other);
+  start = std::chrono::steady_clock::now();
+  const bool ours_hit = solids_intersect(tree, other_tree);
+  const double detect_s = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  const bool theirs_hit = CGAL::Polygon_mesh_processing::do_intersect(cgal, other_cgal);
+  const double cgal_detect_s = seconds_since(start);
+
+  std::printf("%-16s %9lld %8.3f %8.3f %6.2f %9.1f %10.0f %10.0f %6.2f %5zu %8.5f %8.5f %6.2f %s\n", name.c_str(),
+              static_cast<long long>(mesh.face_count()), build, aabb_build, build / aabb_build,
+              static_cast<double>(tree.storage_bytes()) / static_cast<double>(mesh.face_count()),
+              query_count / ours_s, query_count / theirs_s, theirs_s / ours_s, differ, detect_s, cgal_detect_s,
+              cgal_detect_s / detect_s, ours_hit == theirs_hit ? "same" : "DIFFERENT");
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int query_count = 20000, max_subdivisions = 8;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--queries") && i + 1 < argc) query_count = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--max-subdivisions") && i + 1 < argc) max_subdivisions = std::stoi(argv[++i]);
+    else files.emplace_back(argv[i]);
+  }
+  std::printf("%-16s %9s %8s %8s %6s %9s %10s %10s %6s %5s %8s %8s %6s %s\n", "mesh", "faces", "build_s", "aabb_s",
+              "ratio", "bytes/f", "ours_q/s", "cgal_q/s", "speed", "diff", "detect_s", "cgal_s", "speed", "answer");
+  for (int s = 5; s <= max_subdivisions; ++s) run("icosphere(" + std::to_string(s) + ")", sim::icosphere(s), query_count);
+  for (const std::string& file : files)
+    run(std::filesystem::path(file).filename().string(), io::read_mesh(file), query_count);
+  return 0;
+}
