@@ -10,6 +10,15 @@
 
 namespace scanstation {
 
+/// least_squares_ratio  Equations (9.3a) and (9.3d) fix the coefficients
+///   at each end of a macro edge only up to a factor, so λ = e1/e0 is free;
+///   the thesis sets e0 = e1 = 1 (false). When true, λ minimises the
+///   displacement of L1 and R1 from their subdivided positions, in the spirit
+///   of the six-split's Step 5 (our addition; still exactly Equation 9.3).
+struct ThreeSplitOptions {
+  bool least_squares_ratio = false;
+};
+
 /// V #V by 3, F #F by 3 (closed, oriented), N #V by 3 unit normals, edges =
 /// mesh_edges(F). Steps 1–3 (macro_patches), Step 4: each macro triangle is
 /// split at P(1/3,1/3,1/3) into micro triangles (V_k, V_k+1, C), patch 3f+k;
@@ -18,6 +27,6 @@ namespace scanstation {
 /// solution closest to the subdivided L1, R1, counted in dependent_edges); Step 6: Y_i = (W_i + X_i +
 /// X_i−1)/3, Z = (Y_1 + Y_2 + Y_3)/3 [Farin, 83].
 BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
-                          const MeshEdges& edges);
+                          const MeshEdges& edges, const ThreeSplitOptions& options = {});
 
 }  // namespace scanstation

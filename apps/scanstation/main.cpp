@@ -31,6 +31,7 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_info_command(cli));
   commands.push_back(app::make_graph_command(cli));
   commands.push_back(app::make_reconstruct_command(cli));
+  commands.push_back(app::make_smooth_command(cli));
   commands.push_back(app::make_demo_command(cli));
 
   try {
