@@ -100,7 +100,7 @@ void join_micro_edges(CubicTriangle* micro) {
 
 BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                           const MeshEdges& edges, const ThreeSplitOptions& options) {
-  const std::vector<CubicTriangle> macro = macro_patches(V, F, N);
+  const std::vector<CubicTriangle> macro = macro_patches(V, F, N, options.tension);
   BezierSurface surface;
   surface.patches.resize(3 * F.rows());
   surface.macro.resize(3 * F.rows());

@@ -15,8 +15,10 @@ namespace scanstation {
 ///   the thesis sets e0 = e1 = 1 (false). When true, λ minimises the
 ///   displacement of L1 and R1 from their subdivided positions, in the spirit
 ///   of the six-split's Step 5 (our addition; still exactly Equation 9.3).
+/// tension  the Step-2 constant (1/3 in the thesis), see macro_patches.
 struct ThreeSplitOptions {
   bool least_squares_ratio = false;
+  double tension = 1.0 / 3.0;
 };
 
 /// V #V by 3, F #F by 3 (closed, oriented), N #V by 3 unit normals, edges =

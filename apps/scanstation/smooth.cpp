@@ -1,5 +1,5 @@
 // scanstation smooth IN -o OUT: a G¹ piecewise cubic Bézier boundary through
-// a closed polygon (thesis §9.2) or a closed triangle mesh (§9.4, §9.6).
+// a closed polygon (thesis §9.2) or a closed triangle mesh (§9.4, §9.6, §9.8).
 #include "command.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
@@ -11,6 +11,7 @@
 #include "smoothing/polygon_tangents.h"
 #include "smoothing/reflection_lines.h"
 #include "smoothing/sign_condition.h"
+#include "smoothing/six_split.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/three_split.h"
 #include "smoothing/vertex_normals.h"
@@ -33,8 +34,9 @@ class SmoothCommand final : public Command {
                      "Surface: the tessellated mesh with normals (ply, obj, off, stl). Curve: an svg picture (polygon, "
                      "control polygon, curve) or the control points as .json")
         ->required();
-    cli_->add_option("--scheme", scheme_, "three-split (§9.6) for meshes, curve (§9.2) for polygons")
-        ->check(CLI::IsMember({"three-split", "curve"}))
+    cli_->add_option("--scheme", scheme_,
+                     "six-split (§9.8, least oscillation) or three-split (§9.6) for meshes, curve (§9.2) for polygons")
+        ->check(CLI::IsMember({"six-split", "three-split", "curve"}))
         ->capture_default_str();
     cli_->add_option("--normals", normals_,
                      "Vertex normals (§9.4): area, uniform or inverse-area weighting, or given (the input's own "
@@ -45,6 +47,11 @@ class SmoothCommand final : public Command {
                      "three-split Step 5: one (e0 = e1 = 1, as the thesis) or least-squares (the free ratio e1/e0 "
                      "chosen to move L1, R1 least; still exactly Equation 9.3)")
         ->check(CLI::IsMember({"one", "least-squares"}))
+        ->capture_default_str();
+    cli_->add_option("--tension", tension_,
+                     "The Step-2 constant t in b210 = b300 + t(b030* − b300), 1/3 in the thesis; larger values pull the "
+                     "surface further along the tangent planes at the vertices (§9.9)")
+        ->check(CLI::Range(0.05, 0.95))
         ->capture_default_str();
     cli_->add_option("--density", density_, "Tessellation: segments per patch edge")->capture_default_str();
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
@@ -110,7 +117,10 @@ class SmoothCommand final : public Command {
     const std::size_t violations = sign_condition_violations(V, mesh.faces, N).size();
     normal_timer.stop();
     StageTimer patch_timer(context.report, "patches");
-    const BezierSurface surface = three_split(V, mesh.faces, N, edges_of(mesh), {ratio_ == "least-squares"});
+    const MeshEdges edges = edges_of(mesh);
+    const BezierSurface surface = scheme_ == "six-split"
+                                      ? six_split(V, mesh.faces, N, edges, tension_)
+                                      : three_split(V, mesh.faces, N, edges, {ratio_ == "least-squares", tension_});
     patch_timer.stop();
     StageTimer verify_timer(context.report, "verification");
     const G1Verification g1 = verify_g1(surface);
@@ -127,7 +137,7 @@ class SmoothCommand final : public Command {
     context.report["result"] = {
         {"scheme", scheme_},
         {"normals", normals_},
-        {"ratio", ratio_},
+        {"tension", tension_},
         {"macro_triangles", mesh.face_count()},
         {"patches", surface.patches.size()},
         {"adjusted_vertices", adjusted},
@@ -144,9 +154,10 @@ class SmoothCommand final : public Command {
                 "%zu normal(s) adjusted\n",
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 g1.max_normal_angle, adjusted.size());
+    if (scheme_ == "three-split") context.report["result"]["ratio"] = ratio_;
     if (violations > 0 || surface.dependent_edges > 0)
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
-                  "Equation (9.4)\n",
+                  "equations\n",
                   violations, surface.dependent_edges);
   }
 
@@ -170,9 +181,10 @@ class SmoothCommand final : public Command {
   }
 
   std::filesystem::path input_, output_;
-  std::string scheme_ = "three-split";
+  std::string scheme_ = "six-split";
   std::string normals_ = "area";
   std::string ratio_ = "least-squares";
+  double tension_ = 1.0 / 3.0;
   int density_ = 4;
   std::optional<std::filesystem::path> patches_, zebra_;
 };

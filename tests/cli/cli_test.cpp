@@ -279,7 +279,7 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   const nlohmann::json& result = report["result"];
   EXPECT_LT(result["g1"]["max_normal_angle"].get<double>(), 1e-8);
   EXPECT_EQ(result["g1"]["unmatched_edges"], 0);
-  EXPECT_EQ(result["patches"], 3 * result["macro_triangles"].get<int>());
+  EXPECT_EQ(result["patches"], 6 * result["macro_triangles"].get<int>());  // six-split by default
   EXPECT_GT(result["oscillation"]["mean_relative"].get<double>(), 0.0);
   EXPECT_TRUE(report["seconds"].contains("patches"));
   const nlohmann::json patches = nlohmann::json::parse(slurp(dir / "p.json"));
