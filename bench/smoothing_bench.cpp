@@ -1,8 +1,9 @@
-// Patch construction of the three-split (thesis §9.6) per macro triangle,
-// from 20k to 1.3M triangles, against its floor measured in the same run:
-// Steps 1–3 alone (one cubic patch per triangle, `macro_patches`).
+// Patch construction of the six-split (thesis §9.8) and the three-split
+// (§9.6) per macro triangle, from 20k to 1.3M triangles, against their floor
+// measured in the same run: Steps 1–3 alone (one cubic patch per triangle,
+// `macro_patches`).
 //
-//   build/bench/smoothing_bench [--benchmark_filter=ThreeSplit]
+//   build/bench/smoothing_bench [--benchmark_filter=SixSplit]
 //
 // Meshes: icospheres of 5..8 subdivisions with every vertex moved radially by
 // up to ±5% (seeded), so no edge is symmetric. Counters: triangles per second
@@ -11,6 +12,7 @@
 #include "sim/shapes.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/mesh_edges.h"
+#include "smoothing/six_split.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/three_split.h"
 #include "smoothing/vertex_normals.h"
@@ -75,6 +77,17 @@ void ThreeSplit(benchmark::State& state) {
   set_counters(state, in.mesh.face_count(), bytes);
 }
 
+void SixSplit(benchmark::State& state) {
+  const Input& in = input(int(state.range(0)));
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const BezierSurface surface = six_split(in.mesh.vertices.positions, in.mesh.faces, in.normals, in.edges);
+    bytes = surface.patches.size() * sizeof(CubicTriangle) + surface.macro.size() * sizeof(int);
+    benchmark::DoNotOptimize(surface.patches.data());
+  }
+  set_counters(state, in.mesh.face_count(), bytes);
+}
+
 void EdgeAdjacency(benchmark::State& state) {
   const Input& in = input(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(mesh_edges(in.mesh.faces).neighbour.data());
@@ -83,7 +96,7 @@ void EdgeAdjacency(benchmark::State& state) {
 
 void Tessellation(benchmark::State& state) {
   const Input& in = input(int(state.range(0)));
-  const BezierSurface surface = three_split(in.mesh.vertices.positions, in.mesh.faces, in.normals, in.edges);
+  const BezierSurface surface = six_split(in.mesh.vertices.positions, in.mesh.faces, in.normals, in.edges);
   for (auto _ : state) benchmark::DoNotOptimize(tessellate(surface, 4).faces.data());
   set_counters(state, in.mesh.face_count(), 0);
 }
@@ -91,6 +104,7 @@ void Tessellation(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(MacroPatches)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
+BENCHMARK(SixSplit)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(ThreeSplit<false>)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(ThreeSplit<true>)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(EdgeAdjacency)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);

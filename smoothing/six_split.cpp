@@ -108,16 +108,21 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   half_edge_rows(A, rhs, 4, Ya, Xa, Xa_there, sa[A_corner], sa[outer_near_A], sa[AO_near_A], ta[BO_near_B], at_Z_a);
   half_edge_rows(A, rhs, 6, Yb, Xb, Xb_there, sb[B_corner], sb[outer_near_B], sb[BO_near_B], tb[AO_near_A], at_Z_b);
   // Least displacement under A x = rhs: with Aᵀ = QR, δ = Q R⁻ᵀ (rhs − A x)
-  // (no squared condition number), refined once.
+  // (no squared condition number), refined once. Dependent constraints (a
+  // vanishing diagonal of R, e.g. on symmetric configurations) go through the
+  // pseudo-inverse instead.
   const Eigen::HouseholderQR<Eigen::Matrix<double, unknowns, 8>> qr(A.transpose());
-  const Eigen::Matrix<double, unknowns, 8> Q = qr.householderQ() * Eigen::Matrix<double, unknowns, 8>::Identity();
   const Eigen::Matrix<double, 8, 8> R = qr.matrixQR().template topRows<8>().template triangularView<Eigen::Upper>();
-  const auto correction = [&](const Points& at) -> Points {
-    const Eigen::Matrix<double, 8, 3> residual = rhs - A * at;
-    return Q * R.transpose().triangularView<Eigen::Lower>().solve(residual);
-  };
-  Points x = old + correction(old);
-  x += correction(x);
+  const Eigen::VectorXd diagonal = R.diagonal().cwiseAbs();
+  Points x = old;
+  if (diagonal.minCoeff() > 1e-9 * diagonal.maxCoeff()) {
+    const Eigen::Matrix<double, unknowns, 8> Q = qr.householderQ() * Eigen::Matrix<double, unknowns, 8>::Identity();
+    for (int step = 0; step < 2; ++step)
+      x += Q * R.transpose().triangularView<Eigen::Lower>().solve(rhs - A * x);
+  } else {
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 8, unknowns>> cod(A);
+    x += cod.solve(rhs - A * x);
+  }
   const bool met = (A * x - rhs).norm() <= 1e-10 * (rhs.norm() + (A * old).norm() + old.norm());
   const Eigen::Vector3d new_z = x.row(Z);
   sa[B_corner] = sb[A_corner] = tb[B_corner] = ta[A_corner] = new_z;
