@@ -44,19 +44,26 @@ std::vector<int> enforce_sign_condition(const Eigen::MatrixX3d& V, const Eigen::
   for (int f = 0; f < F.rows(); ++f)
     for (int corner = 0; corner < 3; ++corner)
       if (smallest[F(f, corner)] < min_cosine) faces_of[F(f, corner)].push_back(f);
-  constexpr int max_steps = 200;
+  // Maximise min_f n·n_f by subgradient ascent with a shrinking step (the
+  // minimum over the faces is concave on the sphere's useful part); keep the
+  // best direction seen.
+  constexpr int max_steps = 2000;
   for (const int v : adjusted) {
-    Eigen::Vector3d n = N.row(v);
+    Eigen::Vector3d n = N.row(v), best = n;
+    double best_cosine = -2.0;
     for (int step = 0; step < max_steps; ++step) {
       int worst = faces_of[v].front();
       for (const int f : faces_of[v])
         if (n.dot(face_normals.row(f)) < n.dot(face_normals.row(worst))) worst = f;
-      if (n.dot(face_normals.row(worst)) >= min_cosine) break;
-      // A small step towards the worst face's normal: the minimum over the
-      // faces rises as long as a direction with all cosines positive exists.
-      n = (n + 0.25 * Eigen::Vector3d(face_normals.row(worst))).normalized();
+      const double cosine = n.dot(face_normals.row(worst));
+      if (cosine > best_cosine) {
+        best_cosine = cosine;
+        best = n;
+      }
+      if (cosine >= min_cosine) break;
+      n = (n + 0.5 / (1.0 + step / 20.0) * Eigen::Vector3d(face_normals.row(worst))).normalized();
     }
-    N.row(v) = n.transpose();
+    N.row(v) = best.transpose();
   }
   return adjusted;
 }

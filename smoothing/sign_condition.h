@@ -13,9 +13,10 @@ namespace scanstation {
 /// sign"; with the signs of our Equation (9.3a), e0 = 1, it reads f0·g0 > 0).
 /// With the projections of Step 2 this holds at every edge of vertex v
 /// exactly when n_v · n_f > 0 for every incident face f (unit face normal
-/// n_f). Vertices with min_f n_v · n_f < min_cosine get a new normal: moved
-/// towards the worst face until the minimum reaches min_cosine (or the
-/// faces' normals admit no such direction).
+/// n_f). Vertices with min_f n_v · n_f < min_cosine get the normal that
+/// raises that minimum most (subgradient ascent towards the worst face), up to
+/// min_cosine; where the faces' normals fit in no open hemisphere no normal
+/// helps and the vertex stays a violation (the mesh itself must change).
 ///
 /// V #V by 3, F #F by 3, N #V by 3 unit normals (updated in place).
 /// returns  the vertices whose normal was changed, ascending.
