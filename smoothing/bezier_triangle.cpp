@@ -10,8 +10,13 @@ namespace {
 // on each of the three levels. P[a,a,a] = P(a).
 Eigen::Vector3d blossom(const CubicTriangle& patch, const Barycentric& a, const Barycentric& b,
                         const Barycentric& c) {
-  // Level 1: quadratic net (6 points), level 2: linear (3), level 3: point.
-  std::array<Eigen::Vector3d, 6> quadratic;
+  return blossom_level(blossom_level(blossom_level(patch, a), b), c);
+}
+
+}  // namespace
+
+QuadraticNet blossom_level(const CubicTriangle& patch, const Barycentric& a) {
+  QuadraticNet quadratic;
   for (int i = 0; i <= 2; ++i)
     for (int j = 0; j + i <= 2; ++j) {
       const int k = 2 - i - j;
@@ -19,14 +24,15 @@ Eigen::Vector3d blossom(const CubicTriangle& patch, const Barycentric& a, const 
                                              a[1] * patch[control_index(i, j + 1, k)] +
                                              a[2] * patch[control_index(i, j, k + 1)];
     }
-  const auto q = [&](int i, int k) { return quadratic[(2 - i) * (3 - i) / 2 + k]; };
-  const Eigen::Vector3d l100 = b[0] * q(2, 0) + b[1] * q(1, 0) + b[2] * q(1, 1);
-  const Eigen::Vector3d l010 = b[0] * q(1, 0) + b[1] * q(0, 0) + b[2] * q(0, 1);
-  const Eigen::Vector3d l001 = b[0] * q(1, 1) + b[1] * q(0, 1) + b[2] * q(0, 2);
-  return c[0] * l100 + c[1] * l010 + c[2] * l001;
+  return quadratic;
 }
 
-}  // namespace
+LinearNet blossom_level(const QuadraticNet& q, const Barycentric& b) {
+  // q in the order b200, b110, b101, b020, b011, b002.
+  return {b[0] * q[0] + b[1] * q[1] + b[2] * q[2],   // b100
+          b[0] * q[1] + b[1] * q[3] + b[2] * q[4],   // b010
+          b[0] * q[2] + b[1] * q[4] + b[2] * q[5]};  // b001
+}
 
 Eigen::Vector3d evaluate(const CubicTriangle& patch, const Barycentric& uvw) {
   return blossom(patch, uvw, uvw, uvw);

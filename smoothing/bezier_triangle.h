@@ -35,4 +35,16 @@ Eigen::Vector3d normal_direction(const CubicTriangle& patch, const Barycentric& 
 CubicTriangle subpatch(const CubicTriangle& patch, const Barycentric& r0, const Barycentric& r1,
                        const Barycentric& r2);
 
+/// One de Casteljau level of the blossom: the quadratic net P[a, ·, ·]
+/// (order b200, b110, b101, b020, b011, b002), then the linear net
+/// P[a, b, ·] (order b100, b010, b001). P[a, b, c] is the last level with c.
+/// For splitting one patch into many sharing corners (the six-split).
+using QuadraticNet = std::array<Eigen::Vector3d, 6>;
+using LinearNet = std::array<Eigen::Vector3d, 3>;
+QuadraticNet blossom_level(const CubicTriangle& patch, const Barycentric& a);
+LinearNet blossom_level(const QuadraticNet& net, const Barycentric& b);
+inline Eigen::Vector3d blossom_level(const LinearNet& net, const Barycentric& c) {
+  return c[0] * net[0] + c[1] * net[1] + c[2] * net[2];
+}
+
 }  // namespace scanstation

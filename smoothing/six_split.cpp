@@ -4,6 +4,8 @@
 #include "smoothing/tangent_plane_condition.h"
 
 #include <Eigen/QR>
+#include <array>
+#include <utility>
 
 namespace scanstation {
 
@@ -20,14 +22,40 @@ constexpr int centre = control_index(1, 1, 1);
 constexpr double vertex_edge_ratio = 2.0 / 3.0;
 
 // Step 4: subdivision into six (s[2c] = (V_c, Z_c, O), s[2c+1] = (Z_c, V_c+1,
-// O)), and N on the edges from the vertices to O by Equation (9.14).
+// O)), and N on the edges from the vertices to O by Equation (9.14). All 60
+// control points are blossom values P[r_a, r_b, r_c] of seven domain points;
+// the first two de Casteljau levels are shared.
 void split_in_six(const CubicTriangle& macro, CubicTriangle* s) {
-  const Barycentric corner[3] = {Barycentric::UnitX(), Barycentric::UnitY(), Barycentric::UnitZ()};
-  const Barycentric O = Barycentric::Constant(1.0 / 3.0);
+  // Domain points: corners 0–2, edge midpoints 3–5 (edge c is 3 + c), centroid 6.
+  std::array<Barycentric, 7> r;
   for (int c = 0; c < 3; ++c) {
-    const Barycentric Z = (corner[c] + corner[(c + 1) % 3]) / 2.0;
-    s[2 * c] = subpatch(macro, corner[c], Z, O);
-    s[2 * c + 1] = subpatch(macro, Z, corner[(c + 1) % 3], O);
+    r[c] = Barycentric::Unit(c);
+    r[3 + c] = (Barycentric::Unit(c) + Barycentric::Unit((c + 1) % 3)) / 2.0;
+  }
+  r[6] = Barycentric::Constant(1.0 / 3.0);
+  std::array<QuadraticNet, 7> first;
+  for (int a = 0; a < 7; ++a) first[a] = blossom_level(macro, r[a]);
+  std::array<std::array<LinearNet, 7>, 7> second;
+  for (int a = 0; a < 7; ++a)
+    for (int b = a; b < 7; ++b) second[a][b] = blossom_level(first[a], r[b]);
+  const auto value = [&](int a, int b, int c) {
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return blossom_level(second[a][b], r[c]);
+  };
+  for (int j = 0; j < 6; ++j) {
+    const int c = j / 2;
+    const int A = j % 2 == 0 ? c : 3 + c, B = j % 2 == 0 ? 3 + c : (c + 1) % 3;
+    const int corner[3] = {A, B, 6};
+    for (int i = 0; i <= 3; ++i)
+      for (int k = 0; i + k <= 3; ++k) {
+        int args[3] = {0, 0, 0}, n = 0;
+        for (int m = 0; m < i; ++m) args[n++] = corner[0];
+        for (int m = 0; m < 3 - i - k; ++m) args[n++] = corner[1];
+        for (int m = 0; m < k; ++m) args[n++] = corner[2];
+        s[j][control_index(i, 3 - i - k, k)] = value(args[0], args[1], args[2]);
+      }
   }
   for (int c = 0; c < 3; ++c) {
     CubicTriangle& after = s[2 * c];
@@ -107,23 +135,41 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   mean_row(3, Yg, Xa_there, Xb_there);
   half_edge_rows(A, rhs, 4, Ya, Xa, Xa_there, sa[A_corner], sa[outer_near_A], sa[AO_near_A], ta[BO_near_B], at_Z_a);
   half_edge_rows(A, rhs, 6, Yb, Xb, Xb_there, sb[B_corner], sb[outer_near_B], sb[BO_near_B], tb[AO_near_A], at_Z_b);
-  // Least displacement under A x = rhs: with Aᵀ = QR, δ = Q R⁻ᵀ (rhs − A x)
-  // (no squared condition number), refined once. Dependent constraints (a
-  // vanishing diagonal of R, e.g. on symmetric configurations) go through the
+  // Least displacement under A x = rhs: with A = L Q (Gram–Schmidt on the
+  // rows, twice, so Q's rows are orthonormal to rounding), δ = Qᵀ L⁻¹ (rhs −
+  // A x), refined once; no squared condition number. Dependent constraints (a
+  // vanishing diagonal of L, e.g. on symmetric configurations) go through the
   // pseudo-inverse instead.
-  const Eigen::HouseholderQR<Eigen::Matrix<double, unknowns, 8>> qr(A.transpose());
-  const Eigen::Matrix<double, 8, 8> R = qr.matrixQR().template topRows<8>().template triangularView<Eigen::Upper>();
-  const Eigen::VectorXd diagonal = R.diagonal().cwiseAbs();
+  Eigen::Matrix<double, 8, unknowns> Q = A;
+  Eigen::Matrix<double, 8, 8> L = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int i = 0; i < 8; ++i) {
+    for (int pass = 0; pass < 2; ++pass)
+      for (int j = 0; j < i; ++j) {
+        const double projection = Q.row(j).dot(Q.row(i));
+        L(i, j) += projection;
+        Q.row(i) -= projection * Q.row(j);
+      }
+    L(i, i) = Q.row(i).norm();
+    if (L(i, i) > 0.0) Q.row(i) /= L(i, i);
+  }
+  const Eigen::Matrix<double, 8, 1> diagonal = L.diagonal();
   Points x = old;
   if (diagonal.minCoeff() > 1e-9 * diagonal.maxCoeff()) {
-    const Eigen::Matrix<double, unknowns, 8> Q = qr.householderQ() * Eigen::Matrix<double, unknowns, 8>::Identity();
-    for (int step = 0; step < 2; ++step)
-      x += Q * R.transpose().triangularView<Eigen::Lower>().solve(rhs - A * x);
+    for (int step = 0; step < 2; ++step) {
+      // Small fixed sizes: coefficient-wise products and a hand-written
+      // forward substitution (Eigen's general kernels cost more here).
+      Eigen::Matrix<double, 8, 3> y = rhs - A.lazyProduct(x);
+      for (int i = 0; i < 8; ++i) {
+        for (int j = 0; j < i; ++j) y.row(i) -= L(i, j) * y.row(j);
+        y.row(i) /= L(i, i);
+      }
+      x += Q.transpose().lazyProduct(y);
+    }
   } else {
     const Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 8, unknowns>> cod(A);
-    x += cod.solve(rhs - A * x);
+    x += cod.solve(rhs - A.lazyProduct(x));
   }
-  const bool met = (A * x - rhs).norm() <= 1e-10 * (rhs.norm() + (A * old).norm() + old.norm());
+  const bool met = (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm());
   const Eigen::Vector3d new_z = x.row(Z);
   sa[B_corner] = sb[A_corner] = tb[B_corner] = ta[A_corner] = new_z;
   sa[outer_near_B] = ta[outer_near_A] = x.row(Ya).transpose();
