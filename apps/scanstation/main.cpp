@@ -34,6 +34,7 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_approximate_command(cli));
   commands.push_back(app::make_inside_command(cli));
   commands.push_back(app::make_intersect_command(cli));
+  commands.push_back(app::make_smooth_command(cli));
   commands.push_back(app::make_demo_command(cli));
 
   try {

@@ -206,6 +206,8 @@ std::string write_obj(const TriangleMesh& mesh) {
   const PointCloud& v = mesh.vertices;
   if (v.has_colors() && v.colors.rows() != v.size())
     throw InvalidInput("write_obj: the colours must have one row per vertex");
+  if (v.has_normals() && v.normals.rows() != v.size())
+    throw InvalidInput("write_obj: the normals must have one row per vertex");
   std::string out = "# written by scanstation\n";
   out.reserve(static_cast<std::size_t>(v.size()) * 48 + static_cast<std::size_t>(mesh.face_count()) * 24 + 32);
   for (Eigen::Index i = 0; i < v.size(); ++i) {
@@ -220,11 +222,24 @@ std::string write_obj(const TriangleMesh& mesh) {
     }
     out += '\n';
   }
+  // Vertex normals as `vn`, one per vertex with the same index (f a//a ...).
+  for (Eigen::Index i = 0; v.has_normals() && i < v.size(); ++i) {
+    out += "vn";
+    for (int a = 0; a < 3; ++a) {
+      out += ' ';
+      append_double(out, v.normals(i, a));
+    }
+    out += '\n';
+  }
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
     out += 'f';
     for (int a = 0; a < 3; ++a) {
       out += ' ';
       append_int(out, mesh.faces(f, a) + 1LL);
+      if (v.has_normals()) {
+        out += "//";
+        append_int(out, mesh.faces(f, a) + 1LL);
+      }
     }
     out += '\n';
   }

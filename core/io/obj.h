@@ -20,7 +20,8 @@ namespace scanstation::io {
 TriangleMesh read_obj(std::string_view text, const std::filesystem::path& file, const ProgressCallback& progress = {});
 
 /// Writes "v" and "f" records with shortest round-trip decimals (vertex
-/// colours as "v x y z r g b" in 0..1 when present).
+/// colours as "v x y z r g b" in 0..1 when present; vertex normals as "vn"
+/// records with faces "f a//a b//b c//c" when present).
 std::string write_obj(const TriangleMesh& mesh);
 
 }  // namespace scanstation::io

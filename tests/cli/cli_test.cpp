@@ -324,3 +324,51 @@ TEST(Cli, FlintstoneApproximateInsideIntersect) {
 
 }  // namespace
 }  // namespace scanstation
+
+namespace scanstation {
+namespace {
+
+TEST(Cli, SmoothsARealMeshAndAPolygon) {
+  ScratchFolder dir;
+  const std::string eight = path(test::cgal_data("meshes/eight.off"));
+  Outcome r = scanstation("smooth " + eight + " -o " + path(dir / "s.obj") + " --density 2 --patches " +
+                          path(dir / "p.json") + " --zebra " + path(dir / "z.png") + " --report " +
+                          path(dir / "r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "r.json"));
+  const nlohmann::json& result = report["result"];
+  EXPECT_LT(result["g1"]["max_normal_angle"].get<double>(), 1e-8);
+  EXPECT_EQ(result["g1"]["unmatched_edges"], 0);
+  EXPECT_EQ(result["patches"], 6 * result["macro_triangles"].get<int>());  // six-split by default
+  EXPECT_GT(result["oscillation"]["mean_relative"].get<double>(), 0.0);
+  EXPECT_TRUE(report["seconds"].contains("patches"));
+  const nlohmann::json patches = nlohmann::json::parse(slurp(dir / "p.json"));
+  EXPECT_EQ(patches["degree"], 3);
+  EXPECT_EQ(patches["patches"].size(), result["patches"].get<std::size_t>());
+  EXPECT_EQ(patches["patches"][0]["control_points"].size(), 10u);
+  EXPECT_THAT(slurp(dir / "s.obj"), testing::HasSubstr("\nvn "));
+  EXPECT_EQ(slurp(dir / "z.png").substr(1, 3), "PNG");
+
+  std::ofstream(dir / "square.xy") << "0 0\n2 0\n2 1\n0 1\n";
+  r = scanstation("smooth " + path(dir / "square.xy") + " --scheme curve -o " + path(dir / "c.svg") + " --report " +
+                  path(dir / "c.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(nlohmann::json::parse(slurp(dir / "c.json"))["result"]["max_tangent_angle"].get<double>(), 1e-12);
+  EXPECT_THAT(slurp(dir / "c.svg"), testing::HasSubstr("<svg"));
+}
+
+TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
+  ScratchFolder dir;
+  std::ofstream(dir / "open.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  Outcome r = scanstation("smooth " + path(dir / "open.off") + " -o " + path(dir / "s.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("open.off"));
+  EXPECT_THAT(r.err, testing::HasSubstr("not shared by exactly two faces"));
+  const std::string eight = path(test::cgal_data("meshes/eight.off"));
+  EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --density 0").exit_code, 1);
+  EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --scheme bogus").exit_code, 1);
+  EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --normals given").exit_code, 1);
+}
+
+}  // namespace
+}  // namespace scanstation

@@ -1,0 +1,196 @@
+// scanstation smooth IN -o OUT: a G¹ piecewise cubic Bézier boundary through
+// a closed polygon (thesis §9.2) or a closed triangle mesh (§9.4, §9.6, §9.8).
+#include "command.h"
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "smoothing/curve_output.h"
+#include "smoothing/g1_curve.h"
+#include "smoothing/g1_verification.h"
+#include "smoothing/oscillation.h"
+#include "smoothing/patches_json.h"
+#include "smoothing/polygon_tangents.h"
+#include "smoothing/reflection_lines.h"
+#include "smoothing/sign_condition.h"
+#include "smoothing/six_split.h"
+#include "smoothing/tessellation.h"
+#include "smoothing/three_split.h"
+#include "smoothing/vertex_normals.h"
+
+#include <cstdio>
+#include <map>
+
+namespace scanstation::app {
+
+namespace {
+
+class SmoothCommand final : public Command {
+ public:
+  explicit SmoothCommand(CLI::App& parent)
+      : Command(parent, "smooth", "G¹ cubic Bézier curve or surface through a polygon or closed mesh (Ch. 9)") {
+    cli_->add_option("input", input_, "A closed triangle mesh (ply, off, obj, stl), or with --scheme curve a polygon "
+                                      "(svg, or x y per line)")
+        ->required();
+    cli_->add_option("-o,--output", output_,
+                     "Surface: the tessellated mesh with normals (ply, obj, off, stl). Curve: an svg picture (polygon, "
+                     "control polygon, curve) or the control points as .json")
+        ->required();
+    cli_->add_option("--scheme", scheme_,
+                     "six-split (§9.8, least oscillation) or three-split (§9.6) for meshes, curve (§9.2) for polygons")
+        ->check(CLI::IsMember({"six-split", "three-split", "curve"}))
+        ->capture_default_str();
+    cli_->add_option("--normals", normals_,
+                     "Vertex normals (§9.4): area, uniform or inverse-area weighting, or given (the input's own "
+                     "normals); curves use the same names for the tangent weighting (length for area)")
+        ->check(CLI::IsMember({"area", "uniform", "inverse-area", "given"}))
+        ->capture_default_str();
+    cli_->add_option("--ratio", ratio_,
+                     "three-split Step 5: one (e0 = e1 = 1, as the thesis) or least-squares (the free ratio e1/e0 "
+                     "chosen to move L1, R1 least; still exactly Equation 9.3)")
+        ->check(CLI::IsMember({"one", "least-squares"}))
+        ->capture_default_str();
+    cli_->add_option("--tension", tension_,
+                     "The Step-2 constant t in b210 = b300 + t(b030* − b300), 1/3 in the thesis; larger values pull the "
+                     "surface further along the tangent planes at the vertices (§9.9)")
+        ->check(CLI::Range(0.05, 0.95))
+        ->capture_default_str();
+    cli_->add_option("--density", density_, "Tessellation: segments per patch edge")->capture_default_str();
+    cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
+    cli_->add_option("--zebra", zebra_, "Also write a reflection-line (zebra) PNG: smooth surface left, mesh right");
+    cli_->footer("The report holds the largest normal angle and tangent-plane residual (Eq. 8.7) over samples on every "
+                 "shared patch edge, the oscillation relative to the edge length, and the vertices whose normals were "
+                 "adjusted for the G¹ sign condition.");
+  }
+
+  void run(CommandContext& context) override {
+    io::check_writable(output_, context.overwrite);
+    if (patches_) io::check_writable(*patches_, context.overwrite);
+    if (zebra_) io::check_writable(*zebra_, context.overwrite);
+    if (scheme_ == "curve")
+      smooth_curve(context);
+    else
+      smooth_surface(context);
+  }
+
+ private:
+  void smooth_curve(CommandContext& context) {
+    if (zebra_) throw InvalidInput("--zebra renders surfaces; --scheme curve makes a 2D curve");
+    StageTimer read_timer(context.report, "read");
+    const Polygon2 polygon = io::read_polygon(input_);
+    read_timer.stop();
+    const std::map<std::string, TangentWeighting> weightings{{"area", TangentWeighting::length},
+                                                             {"uniform", TangentWeighting::uniform},
+                                                             {"inverse-area", TangentWeighting::inverse_length}};
+    if (normals_ == "given") throw InvalidInput("--normals given: polygons carry no tangents; use area, uniform or inverse-area");
+    StageTimer curve_timer(context.report, "curve");
+    const G1Curve curve = g1_curve(polygon, polygon_tangents(polygon, weightings.at(normals_)));
+    curve_timer.stop();
+    StageTimer write_timer(context.report, "write");
+    const bool json_output = output_.extension() == ".json";
+    if (!json_output && output_.extension() != ".svg")
+      throw InvalidInput("-o " + output_.string() + ": a curve is written as .svg (picture) or .json (control points)");
+    io::write_file_atomically(output_, json_output ? g1_curve_json(curve).dump(1) : g1_curve_svg(polygon, curve),
+                              context.overwrite);
+    if (patches_) io::write_file_atomically(*patches_, g1_curve_json(curve).dump(1), context.overwrite);
+    nlohmann::json& result = context.report["result"];
+    result = {{"scheme", "curve"},
+              {"vertices", polygon.size()},
+              {"segments", curve.segment_count()},
+              {"tangent_weighting", normals_ == "area" ? "length" : normals_},
+              {"repaired_vertices", curve.repaired_vertices},
+              {"unrepaired_vertices", curve.unrepaired_vertices},
+              {"max_tangent_angle", max_tangent_angle(curve)}};
+    std::printf("wrote %s: %lld cubic segments, %zu cusp(s) repaired, largest tangent angle %.3g rad\n",
+                output_.c_str(), static_cast<long long>(curve.segment_count()), curve.repaired_vertices.size(),
+                max_tangent_angle(curve));
+  }
+
+  void smooth_surface(CommandContext& context) {
+    StageTimer read_timer(context.report, "read");
+    const TriangleMesh mesh = io::read_mesh(input_, {std::nullopt, context.progress.stage("read")});
+    context.progress.finish();
+    read_timer.stop();
+    if (mesh.face_count() == 0) throw InvalidInput(input_.string() + ": no triangles; smoothing needs a closed mesh");
+    const auto& V = mesh.vertices.positions;
+    StageTimer normal_timer(context.report, "normals");
+    Eigen::MatrixX3d N = vertex_normals_for(mesh);
+    const std::vector<int> adjusted = enforce_sign_condition(V, mesh.faces, N);
+    const std::size_t violations = sign_condition_violations(V, mesh.faces, N).size();
+    normal_timer.stop();
+    StageTimer patch_timer(context.report, "patches");
+    const MeshEdges edges = edges_of(mesh);
+    const BezierSurface surface = scheme_ == "six-split"
+                                      ? six_split(V, mesh.faces, N, edges, tension_)
+                                      : three_split(V, mesh.faces, N, edges, {ratio_ == "least-squares", tension_});
+    patch_timer.stop();
+    StageTimer verify_timer(context.report, "verification");
+    const G1Verification g1 = verify_g1(surface);
+    const Oscillation wiggle = oscillation(surface, V, mesh.faces);
+    verify_timer.stop();
+    StageTimer tessellate_timer(context.report, "tessellation");
+    const TriangleMesh dense = tessellate(surface, density_);
+    tessellate_timer.stop();
+    StageTimer write_timer(context.report, "write");
+    io::write_mesh(output_, dense, {std::nullopt, std::nullopt, context.overwrite});
+    if (patches_) io::write_file_atomically(*patches_, patches_json(surface, scheme_), context.overwrite);
+    if (zebra_) io::write_file_atomically(*zebra_, reflection_lines_png(dense, mesh), context.overwrite);
+    write_timer.stop();
+    context.report["result"] = {
+        {"scheme", scheme_},
+        {"normals", normals_},
+        {"tension", tension_},
+        {"macro_triangles", mesh.face_count()},
+        {"patches", surface.patches.size()},
+        {"adjusted_vertices", adjusted},
+        {"sign_condition_violations", violations},
+        {"dependent_edges", surface.dependent_edges},
+        {"g1", {{"max_normal_angle", g1.max_normal_angle},
+                {"max_tangent_plane_residual", g1.max_residual},
+                {"shared_edges", g1.shared_edges},
+                {"samples", g1.samples},
+                {"unmatched_edges", g1.unmatched_edges}}},
+        {"oscillation", {{"max_relative", wiggle.max_relative}, {"mean_relative", wiggle.mean_relative}}},
+        {"tessellation", {{"density", density_}, {"vertices", dense.vertex_count()}, {"faces", dense.face_count()}}}};
+    std::printf("wrote %s: %zu cubic patches over %lld triangles, largest normal angle across patch edges %.3g rad, "
+                "%zu normal(s) adjusted\n",
+                output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
+                g1.max_normal_angle, adjusted.size());
+    if (scheme_ == "three-split") context.report["result"]["ratio"] = ratio_;
+    if (violations > 0 || surface.dependent_edges > 0)
+      std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
+                  "equations\n",
+                  violations, surface.dependent_edges);
+  }
+
+  Eigen::MatrixX3d vertex_normals_for(const TriangleMesh& mesh) const {
+    if (normals_ == "given") {
+      if (!mesh.vertices.has_normals()) throw InvalidInput("--normals given: " + input_.string() + " has no normals");
+      return mesh.vertices.normals.rowwise().normalized();
+    }
+    const std::map<std::string, NormalWeighting> weightings{{"area", NormalWeighting::area},
+                                                            {"uniform", NormalWeighting::uniform},
+                                                            {"inverse-area", NormalWeighting::inverse_area}};
+    return vertex_normals(mesh.vertices.positions, mesh.faces, weightings.at(normals_));
+  }
+
+  MeshEdges edges_of(const TriangleMesh& mesh) const {
+    try {
+      return mesh_edges(mesh.faces);
+    } catch (const TopologyError& e) {
+      throw InvalidInput(input_.string() + ": " + e.what());
+    }
+  }
+
+  std::filesystem::path input_, output_;
+  std::string scheme_ = "six-split";
+  std::string normals_ = "area";
+  std::string ratio_ = "least-squares";
+  double tension_ = 1.0 / 3.0;
+  int density_ = 4;
+  std::optional<std::filesystem::path> patches_, zebra_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_smooth_command(CLI::App& parent) { return std::make_unique<SmoothCommand>(parent); }
+
+}  // namespace scanstation::app

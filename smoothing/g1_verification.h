@@ -1,0 +1,28 @@
+// How continuous a Bézier surface really is: the tangent plane residual of
+// Equation (8.7) and the angle between the unit normals of the two patches
+// (Theorem 8.1) at sample points along every shared patch edge.
+#pragma once
+
+#include "smoothing/bezier_surface.h"
+
+#include <cstddef>
+
+namespace scanstation {
+
+/// max_normal_angle  radians; G¹ when at floating-point noise (≈1e-12)
+/// max_residual  |[∇_d P, ∇_c P, ∇_c Q]| / (|∇_d P| |∇_c P| |∇_c Q|), the
+///               scale-free Equation (8.7); 0 for tangent plane continuity
+/// shared_edges, samples  what was measured; unmatched_edges  patch edges
+///               without a partner (the surface is not closed)
+struct G1Verification {
+  double max_normal_angle = 0.0;
+  double max_residual = 0.0;
+  std::size_t shared_edges = 0;
+  std::size_t samples = 0;
+  std::size_t unmatched_edges = 0;
+};
+
+/// samples_per_edge ≥ 1 interior points plus both ends of every shared edge.
+G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge = 7);
+
+}  // namespace scanstation

@@ -1,0 +1,58 @@
+#include "smoothing/oscillation.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+namespace scanstation {
+
+namespace {
+
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+}  // namespace
+
+Oscillation oscillation(const BezierSurface& surface, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
+                        int samples_per_edge) {
+  Oscillation result;
+  std::size_t count = 0;
+  const int n = samples_per_edge;
+  for (std::size_t p = 0; p < surface.patches.size(); ++p) {
+    const int f = surface.macro[p];
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const double edge_length = ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
+    if (!(edge_length > 0.0)) continue;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const Barycentric uvw(double(n - i - j) / n, double(i) / n, double(j) / n);
+        const Eigen::Vector3d x = evaluate(surface.patches[p], uvw);
+        const double relative = (x - closest_on_triangle(x, a, b, c)).norm() / edge_length;
+        result.max_relative = std::max(result.max_relative, relative);
+        result.mean_relative += relative;
+        ++count;
+      }
+  }
+  if (count > 0) result.mean_relative /= double(count);
+  return result;
+}
+
+}  // namespace scanstation

@@ -1,0 +1,225 @@
+#include "smoothing/six_split.h"
+
+#include "smoothing/macro_patches.h"
+#include "smoothing/tangent_plane_condition.h"
+
+#include <Eigen/QR>
+#include <array>
+#include <utility>
+
+namespace scanstation {
+
+namespace {
+
+// Control points of a micro triangle (A, B, O): A = b300, B = b030, O = b003.
+constexpr int A_corner = control_index(3, 0, 0), B_corner = control_index(0, 3, 0), O_corner = control_index(0, 0, 3);
+constexpr int outer_near_A = control_index(2, 1, 0), outer_near_B = control_index(1, 2, 0);
+constexpr int AO_near_A = control_index(2, 0, 1), AO_near_O = control_index(1, 0, 2);
+constexpr int BO_near_B = control_index(0, 2, 1), BO_near_O = control_index(0, 1, 2);
+constexpr int centre = control_index(1, 1, 1);
+
+// Step 0: N − V = τ((K0 − V) + (K1 − V)) at the macro vertices, τ = 2/3.
+constexpr double vertex_edge_ratio = 2.0 / 3.0;
+
+// Step 4: subdivision into six (s[2c] = (V_c, Z_c, O), s[2c+1] = (Z_c, V_c+1,
+// O)), and N on the edges from the vertices to O by Equation (9.14). All 60
+// control points are blossom values P[r_a, r_b, r_c] of seven domain points;
+// the first two de Casteljau levels are shared.
+void split_in_six(const CubicTriangle& macro, CubicTriangle* s) {
+  // Domain points: corners 0–2, edge midpoints 3–5 (edge c is 3 + c), centroid 6.
+  std::array<Barycentric, 7> r;
+  for (int c = 0; c < 3; ++c) {
+    r[c] = Barycentric::Unit(c);
+    r[3 + c] = (Barycentric::Unit(c) + Barycentric::Unit((c + 1) % 3)) / 2.0;
+  }
+  r[6] = Barycentric::Constant(1.0 / 3.0);
+  std::array<QuadraticNet, 7> first;
+  for (int a = 0; a < 7; ++a) first[a] = blossom_level(macro, r[a]);
+  std::array<std::array<LinearNet, 7>, 7> second;
+  for (int a = 0; a < 7; ++a)
+    for (int b = a; b < 7; ++b) second[a][b] = blossom_level(first[a], r[b]);
+  const auto value = [&](int a, int b, int c) {
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return blossom_level(second[a][b], r[c]);
+  };
+  for (int j = 0; j < 6; ++j) {
+    const int c = j / 2;
+    const int A = j % 2 == 0 ? c : 3 + c, B = j % 2 == 0 ? 3 + c : (c + 1) % 3;
+    const int corner[3] = {A, B, 6};
+    for (int i = 0; i <= 3; ++i)
+      for (int k = 0; i + k <= 3; ++k) {
+        int args[3] = {0, 0, 0}, n = 0;
+        for (int m = 0; m < i; ++m) args[n++] = corner[0];
+        for (int m = 0; m < 3 - i - k; ++m) args[n++] = corner[1];
+        for (int m = 0; m < k; ++m) args[n++] = corner[2];
+        s[j][control_index(i, 3 - i - k, k)] = value(args[0], args[1], args[2]);
+      }
+  }
+  for (int c = 0; c < 3; ++c) {
+    CubicTriangle& after = s[2 * c];
+    CubicTriangle& before = s[(2 * c + 5) % 6];
+    const Eigen::Vector3d& V = after[A_corner];
+    const Eigen::Vector3d N = V + vertex_edge_ratio * ((after[outer_near_A] - V) + (before[outer_near_B] - V));
+    after[AO_near_A] = N;
+    before[BO_near_B] = N;
+  }
+}
+
+// Unknowns of Step 5, one row each.
+enum Unknown { Z, Ya, Yb, Yf, Yg, Xa, Xb, Xa_there, Xb_there, unknowns };
+using Constraints = Eigen::Matrix<double, 8, unknowns>;
+using Points = Eigen::Matrix<double, unknowns, 3>;
+
+// Equation (9.3b, c) on the half edge V → Z with M = (V, K, Y, Z), rows
+// L = (N_here, X_here, Y_f), R = (N_there, X_there, Y_g); E, F, G linear
+// from (1, f0, g0) at V (Equation 9.3a) to `at_Z` = (1, f1, g1) at Z.
+void half_edge_rows(Constraints& A, Eigen::Matrix<double, 8, 3>& rhs, int row, Unknown Y, Unknown X_here,
+                    Unknown X_there, const Eigen::Vector3d& V, const Eigen::Vector3d& K, const Eigen::Vector3d& N_here,
+                    const Eigen::Vector3d& N_there, const Eigen::Vector2d& at_Z) {
+  const Eigen::Vector2d c0 = end_coefficients(K - V, N_here - V, N_there - V);
+  const double f0 = c0.x(), g0 = c0.y(), f1 = at_Z.x(), g1 = at_Z.y();
+  // (9.3b): (K − V) + 2(Y − K) + f1(N_here − V) + 2f0(X_here − K) + g1(N_there − V) + 2g0(X_there − K) = 0
+  A(row, Y) = 2.0;
+  A(row, X_here) = 2.0 * f0;
+  A(row, X_there) = 2.0 * g0;
+  rhs.row(row) = (-(K - V) + 2.0 * K - f1 * (N_here - V) - g1 * (N_there - V) + 2.0 * (f0 + g0) * K).transpose();
+  // (9.3c): 2(Y − K) + (Z − Y) + 2f1(X_here − K) + f0(Y_f − Y) + 2g1(X_there − K) + g0(Y_g − Y) = 0
+  A(row + 1, Y) = 1.0 - f0 - g0;
+  A(row + 1, Z) = 1.0;
+  A(row + 1, X_here) = 2.0 * f1;
+  A(row + 1, X_there) = 2.0 * g1;
+  A(row + 1, Yf) = f0;
+  A(row + 1, Yg) = g0;
+  rhs.row(row + 1) = (2.0 * (1.0 + f1 + g1) * K).transpose();
+}
+
+// Step 5 for the macro edge between s[2c], s[2c+1] (this side) and t[2d],
+// t[2d+1] (the other side). Returns false when the constraints were
+// dependent and could not all be met.
+//
+// The star at Z: the edges to O and O' join C¹ inside their macro triangles,
+// so Z = (Y_a + Y_b)/2; the half edge to V_c ends in (Z − Y_a) + φ(Y_f − Y_a)
+// + ψ(Y_g − Y_a) = 0 with (φ, ψ) fitted to the subdivided points, and then the
+// half edge to V_c+1 must end in μ(φ, ψ), μ = −1/(1 + 2(φ + ψ)), for the two
+// to share one tangent plane at Z.
+bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, CubicTriangle& ta) {
+  Points old;
+  old.row(Z) = sa[B_corner].transpose();
+  old.row(Ya) = sa[outer_near_B].transpose();
+  old.row(Yb) = sb[outer_near_A].transpose();
+  old.row(Yf) = sa[BO_near_B].transpose();
+  old.row(Yg) = ta[AO_near_A].transpose();
+  old.row(Xa) = sa[centre].transpose();
+  old.row(Xb) = sb[centre].transpose();
+  old.row(Xa_there) = ta[centre].transpose();
+  old.row(Xb_there) = tb[centre].transpose();
+  const Eigen::Vector3d z = old.row(Z), ya = old.row(Ya);
+  const Eigen::Vector2d at_Z_a = end_coefficients(z - ya, Eigen::Vector3d(old.row(Yf)) - ya, Eigen::Vector3d(old.row(Yg)) - ya);
+  const double phi = at_Z_a.x(), psi = at_Z_a.y();
+  const Eigen::Vector2d at_Z_b = -at_Z_a / (1.0 + 2.0 * (phi + psi));
+  Constraints A = Constraints::Zero();
+  Eigen::Matrix<double, 8, 3> rhs = Eigen::Matrix<double, 8, 3>::Zero();
+  const auto mean_row = [&A](int row, Unknown of, Unknown first, Unknown second) {
+    A(row, of) = 1.0;
+    A(row, first) = -0.5;
+    A(row, second) = -0.5;
+  };
+  mean_row(0, Z, Ya, Yb);
+  A(1, Z) = 1.0;  // (Z − Y_a) + φ(Y_f − Y_a) + ψ(Y_g − Y_a) = 0
+  A(1, Ya) = -(1.0 + phi + psi);
+  A(1, Yf) = phi;
+  A(1, Yg) = psi;
+  mean_row(2, Yf, Xa, Xb);
+  mean_row(3, Yg, Xa_there, Xb_there);
+  half_edge_rows(A, rhs, 4, Ya, Xa, Xa_there, sa[A_corner], sa[outer_near_A], sa[AO_near_A], ta[BO_near_B], at_Z_a);
+  half_edge_rows(A, rhs, 6, Yb, Xb, Xb_there, sb[B_corner], sb[outer_near_B], sb[BO_near_B], tb[AO_near_A], at_Z_b);
+  // Least displacement under A x = rhs: with A = L Q (Gram–Schmidt on the
+  // rows, twice, so Q's rows are orthonormal to rounding), δ = Qᵀ L⁻¹ (rhs −
+  // A x), refined once; no squared condition number. Dependent constraints (a
+  // vanishing diagonal of L, e.g. on symmetric configurations) go through the
+  // pseudo-inverse instead.
+  Eigen::Matrix<double, 8, unknowns> Q = A;
+  Eigen::Matrix<double, 8, 8> L = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int i = 0; i < 8; ++i) {
+    for (int pass = 0; pass < 2; ++pass)
+      for (int j = 0; j < i; ++j) {
+        const double projection = Q.row(j).dot(Q.row(i));
+        L(i, j) += projection;
+        Q.row(i) -= projection * Q.row(j);
+      }
+    L(i, i) = Q.row(i).norm();
+    if (L(i, i) > 0.0) Q.row(i) /= L(i, i);
+  }
+  const Eigen::Matrix<double, 8, 1> diagonal = L.diagonal();
+  Points x = old;
+  if (diagonal.minCoeff() > 1e-9 * diagonal.maxCoeff()) {
+    for (int step = 0; step < 2; ++step) {
+      // Small fixed sizes: coefficient-wise products and a hand-written
+      // forward substitution (Eigen's general kernels cost more here).
+      Eigen::Matrix<double, 8, 3> y = rhs - A.lazyProduct(x);
+      for (int i = 0; i < 8; ++i) {
+        for (int j = 0; j < i; ++j) y.row(i) -= L(i, j) * y.row(j);
+        y.row(i) /= L(i, i);
+      }
+      x += Q.transpose().lazyProduct(y);
+    }
+  } else {
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 8, unknowns>> cod(A);
+    x += cod.solve(rhs - A.lazyProduct(x));
+  }
+  const bool met = (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm());
+  const Eigen::Vector3d new_z = x.row(Z);
+  sa[B_corner] = sb[A_corner] = tb[B_corner] = ta[A_corner] = new_z;
+  sa[outer_near_B] = ta[outer_near_A] = x.row(Ya).transpose();
+  sb[outer_near_A] = tb[outer_near_B] = x.row(Yb).transpose();
+  sa[BO_near_B] = sb[AO_near_A] = x.row(Yf).transpose();
+  tb[BO_near_B] = ta[AO_near_A] = x.row(Yg).transpose();
+  sa[centre] = x.row(Xa).transpose();
+  sb[centre] = x.row(Xb).transpose();
+  ta[centre] = x.row(Xa_there).transpose();
+  tb[centre] = x.row(Xb_there).transpose();
+  return met;
+}
+
+// Steps 6 and 7 inside one macro triangle: the domain ratios of the split.
+void join_star(CubicTriangle* s) {
+  Eigen::Vector3d Q[6];
+  for (int j = 0; j < 6; j += 2) {  // edges V → O, Equation (9.13a)
+    const Eigen::Vector3d N = s[j][AO_near_A];
+    Q[j] = N + 2.0 / 3.0 * (s[j][centre] + s[(j + 5) % 6][centre] - 2.0 * N);
+  }
+  for (int j = 1; j < 6; j += 2) Q[j] = (Q[j - 1] + Q[(j + 1) % 6]) / 2.0;  // edges Z → O, (9.12a)
+  const Eigen::Vector3d O = (Q[0] + Q[2] + Q[4]) / 3.0;
+  for (int j = 0; j < 6; ++j) {
+    s[j][AO_near_O] = Q[j];
+    s[(j + 5) % 6][BO_near_O] = Q[j];
+    s[j][O_corner] = O;
+  }
+}
+
+}  // namespace
+
+BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
+                        const MeshEdges& edges, double tension) {
+  const std::vector<CubicTriangle> macro = macro_patches(V, F, N, tension);
+  BezierSurface surface;
+  surface.patches.resize(6 * F.rows());
+  surface.macro.resize(6 * F.rows());
+  for (int f = 0; f < F.rows(); ++f) {
+    split_in_six(macro[f], &surface.patches[6 * f]);
+    for (int j = 0; j < 6; ++j) surface.macro[6 * f + j] = f;
+  }
+  auto& P = surface.patches;
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int g = edges.neighbour(f, c), d = edges.neighbour_edge(f, c);
+      if (f < g && !join_macro_edge(P[6 * f + 2 * c], P[6 * f + 2 * c + 1], P[6 * g + 2 * d], P[6 * g + 2 * d + 1]))
+        ++surface.dependent_edges;
+    }
+  for (int f = 0; f < F.rows(); ++f) join_star(&P[6 * f]);
+  return surface;
+}
+
+}  // namespace scanstation

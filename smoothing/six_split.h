@@ -1,0 +1,35 @@
+// The cubic six-split scheme (thesis §9.8): every macro triangle is split at
+// its centroid O and edge midpoints Z into six cubic micro triangles; the
+// control points near each Z are set by constrained least squares (Step 5),
+// the rest so that the micro triangles of one macro triangle join C¹.
+#pragma once
+
+#include "smoothing/bezier_surface.h"
+#include "smoothing/mesh_edges.h"
+
+#include <Eigen/Core>
+
+namespace scanstation {
+
+/// V #V by 3, F #F by 3 (closed, oriented), N #V by 3 unit normals, edges =
+/// mesh_edges(F). Patch 6f+j is micro triangle j of face f: for corner c,
+/// j = 2c is (V_c, Z_c, O) and j = 2c+1 is (Z_c, V_c+1, O).
+///
+/// Steps 1–4 as §9.8 (macro patches, subdivision, N by Equation 9.14 with
+/// N − V = ⅔((K0 − V) + (K1 − V)), i.e. the thesis' b = −2/3 with its signs:
+/// the only value for which the conditions (9.10b) at Z are not degenerate,
+/// see docs/design.md).
+/// Step 5, per macro edge: Z, its four neighbours Y and the four centres X
+/// around Z move least (least squares, Eigen) subject to
+///   Z = (Y_a + Y_b)/2 = (Y_f + Y_g)/2   (the star at Z: a common tangent plane),
+///   Y_f = (X_a + X_b)/2, Y_g likewise  (Equation 9.10a on the edges to O, O'),
+///   Equation (9.3b, c) on both macro half edges, with linear E, F, G fixed at
+///   the vertex end by the tangent plane (Equation 9.9a) and at Z to (1, −½, −½).
+/// Steps 6–7: Q at the vertex edges from Equation (9.13a), Q at the midpoint
+/// edges the mean of their neighbours (9.12a), O = (Q0 + Q2 + Q4)/3 — the
+/// domain ratios of the split, so the interior joins C¹.
+/// tension  the Step-2 constant of the macro patches (1/3 in the thesis).
+BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
+                        const MeshEdges& edges, double tension = 1.0 / 3.0);
+
+}  // namespace scanstation

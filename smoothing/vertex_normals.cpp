@@ -1,0 +1,32 @@
+#include "smoothing/vertex_normals.h"
+
+#include "core/errors.h"
+
+#include <Eigen/Geometry>
+#include <string>
+
+namespace scanstation {
+
+Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, NormalWeighting weighting) {
+  Eigen::MatrixX3d N = Eigen::MatrixX3d::Zero(V.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::Vector3d cross = (b - a).cross(c - a);  // twice the area times the unit normal
+    const double twice_area = cross.norm();
+    if (twice_area == 0.0) continue;
+    Eigen::Vector3d weighted = cross;
+    if (weighting == NormalWeighting::uniform) weighted = cross / twice_area;
+    if (weighting == NormalWeighting::inverse_area) weighted = 2.0 * cross / (twice_area * twice_area);
+    for (int corner = 0; corner < 3; ++corner) N.row(F(f, corner)) += weighted.transpose();
+  }
+  for (Eigen::Index v = 0; v < N.rows(); ++v) {
+    const double length = N.row(v).norm();
+    if (!(length > 0.0))
+      throw InvalidInput("vertex " + std::to_string(v) +
+                         ": no surface normal (no incident face of positive area, or the faces cancel)");
+    N.row(v) /= length;
+  }
+  return N;
+}
+
+}  // namespace scanstation

@@ -1,0 +1,30 @@
+// Meshes shared by the smoothing tests: generated shapes, randomly perturbed
+// closed meshes and real meshes from Debian's libcgal-demo data.
+#pragma once
+
+#include "core/io/mesh_io.h"
+#include "sim/random.h"
+#include "sim/shapes.h"
+#include "test_support.h"
+
+#include <string>
+#include <vector>
+
+namespace scanstation::test {
+
+/// An icosphere of 2 subdivisions with every vertex moved radially by up to ±amount.
+inline TriangleMesh bumpy_sphere(std::uint64_t seed, double amount) {
+  TriangleMesh mesh = sim::icosphere(2);
+  sim::Random random(seed);
+  for (Eigen::Index v = 0; v < mesh.vertex_count(); ++v)
+    mesh.vertices.positions.row(v) *= 1.0 + amount * (2.0 * random.uniform() - 1.0);
+  return mesh;
+}
+
+/// Closed, oriented meshes from libcgal-demo (genus 0, and knot1 of genus 1)
+/// on which the sign condition holds and no macro edge is symmetric.
+inline std::vector<std::string> real_mesh_names() { return {"bunny00.off", "elephant.off", "eight.off", "knot1.off"}; }
+
+inline TriangleMesh real_mesh(const std::string& name) { return io::read_mesh(cgal_data("meshes/" + name)); }
+
+}  // namespace scanstation::test
