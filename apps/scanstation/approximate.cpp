@@ -21,7 +21,7 @@ nlohmann::json errors_json(const ApproximationErrors& e) { return {{"e1", e.e1},
 template <typename Tree>
 nlohmann::json per_level(const Tree& tree, const char* pieces) {
   nlohmann::json levels = nlohmann::json::array();
-  for (int level = 0; level <= tree.levels(); ++level) {
+  for (int level = 0; level < tree.levels(); ++level) {
     const auto a = approximation(tree, level);
     levels.push_back({{"level", level}, {pieces, a.pieces.size()}, {"errors", errors_json(a.errors)}});
     if (a.errors.e1 == 0.0 && a.errors.e5 == 0.0) break;  // the original reached
