@@ -118,7 +118,16 @@ class Builder {
     FlintstoneNode3 root;
     Eigen::Vector3d center;
     double radius = 0.0;
-    root.corners = root_corners(V_, center, radius);
+    // The corners must lie on the surface: isolated vertices are left out.
+    std::vector<char> used(static_cast<std::size_t>(V_.rows()), 0);
+    for (Eigen::Index f = 0; f < F_.rows(); ++f)
+      for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(F_(f, k))] = 1;
+    std::vector<int> on_surface;
+    for (int v = 0; v < V_.rows(); ++v)
+      if (used[static_cast<std::size_t>(v)]) on_surface.push_back(v);
+    const Eigen::MatrixX3d surface = V_(on_surface, Eigen::all);
+    root.corners = root_corners(surface, center, radius);
+    for (int& corner : root.corners) corner = on_surface[static_cast<std::size_t>(corner)];
     const double reach = (V_.rowwise() - center.transpose()).rowwise().norm().maxCoeff();
     root.stone = ball_flintstone<3>(center, std::max(radius, reach));
     root.bound = root.stone.first;

@@ -184,6 +184,20 @@ TEST(FlintstoneTree3, DynamicInsertionRebuildsASubtree) {
   expect_inclusion_matches_brute_force(tree, mesh, 1500, "after insertions");
 }
 
+TEST(FlintstoneTree3, IsolatedVerticesAreNotCorners) {
+  TriangleMesh mesh = sim::icosphere(2);
+  mesh.vertices.positions.conservativeResize(mesh.vertex_count() + 1, 3);
+  mesh.vertices.positions.bottomRows(1) << 40.0, 0.0, 0.0;  // far away, in no face
+  const FlintstoneTree3 tree = flintstone_tree(mesh);
+  for (const int corner : tree.root().corners) EXPECT_LT(corner, mesh.vertex_count() - 1);
+  // The same splits as without the isolated vertex.
+  const FlintstoneTree3 plain = flintstone_tree(sim::icosphere(2));
+  EXPECT_EQ(tree.root().corners, plain.root().corners);
+  EXPECT_EQ(tree.nodes.size(), plain.nodes.size());
+  expect_valid_tree(tree, "icosphere with an isolated vertex");
+  expect_inclusion_matches_brute_force(tree, mesh, 600, "icosphere with an isolated vertex");
+}
+
 TEST(FlintstoneTree3, RejectsOpenMeshes) {
   TriangleMesh open = sim::icosphere(1);
   open.faces.conservativeResize(open.faces.rows() - 1, 3);
