@@ -140,6 +140,7 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
     double key, height;
   };
   std::vector<Candidate> candidates;
+  bool off_chord = false;
   for (const int v : members) {
     if (std::find(corners.begin(), corners.end(), v) != corners.end()) continue;
     const bool may_split = eligible == nullptr || (*eligible)[v];
@@ -149,7 +150,8 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
     if (s == 0) {
       // On the chord line/plane: every ball of the family holds it iff it lies
       // within the chord/circumcircle; otherwise no finite flintstone exists.
-      if (x.squaredNorm() > family.r2 * (1.0 + 1e-9)) return enclosing_flintstone<D>(V, all);
+      // (The split vertex is still chosen below.)
+      if (x.squaredNorm() > family.r2 * (1.0 + 1e-9)) off_chord = true;
       plus.push_back(v);
       minus.push_back(v);
       continue;
@@ -172,27 +174,29 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
   }
 
   const double r = std::sqrt(family.r2);
-  Flintstone<D> f;
-  // A side without vertices is the half-plane/half-space (radius −∞); it is
-  // stored as a ball through the chord far enough out (bulge ≤ r/16) that it
-  // holds the other ball's side.
-  f.first.halfspace = std::isnan(key_plus);
-  f.second.halfspace = std::isnan(key_minus);
-  if (f.first.halfspace) key_plus = (f.second.halfspace ? 0.0 : std::min(key_minus, 0.0)) - 8.0 * r;
-  if (f.second.halfspace) key_minus = std::max(key_plus, 0.0) + 8.0 * r;
-  f.is_union = key_plus > key_minus;
-  const double radius_plus = std::sqrt(family.r2 + key_plus * key_plus);
-  const double radius_minus = std::sqrt(family.r2 + key_minus * key_minus);
-  f.first.center = family.cc + key_plus * family.n;
-  f.first.radius = radius_plus;
-  f.first.signed_radius = key_plus >= 0.0 ? radius_plus : -radius_plus;  // Definition 7.1
-  f.first.width = f.first.halfspace ? 0.0 : radius_plus + key_plus;       // Definition 7.4
-  f.second.center = family.cc + key_minus * family.n;
-  f.second.radius = radius_minus;
-  f.second.signed_radius = key_minus <= 0.0 ? radius_minus : -radius_minus;
-  f.second.width = f.second.halfspace ? 0.0 : radius_minus - key_minus;
-  enclose(f.first, V, f.is_union ? plus : all);
-  enclose(f.second, V, f.is_union ? minus : all);
+  Flintstone<D> f = off_chord ? enclosing_flintstone<D>(V, all) : Flintstone<D>{};
+  if (!off_chord) {
+    // A side without vertices is the half-plane/half-space (radius −∞); it is
+    // stored as a ball through the chord far enough out (bulge ≤ r/16) that it
+    // holds the other ball's side.
+    f.first.halfspace = std::isnan(key_plus);
+    f.second.halfspace = std::isnan(key_minus);
+    if (f.first.halfspace) key_plus = (f.second.halfspace ? 0.0 : std::min(key_minus, 0.0)) - 8.0 * r;
+    if (f.second.halfspace) key_minus = std::max(key_plus, 0.0) + 8.0 * r;
+    f.is_union = key_plus > key_minus;
+    const double radius_plus = std::sqrt(family.r2 + key_plus * key_plus);
+    const double radius_minus = std::sqrt(family.r2 + key_minus * key_minus);
+    f.first.center = family.cc + key_plus * family.n;
+    f.first.radius = radius_plus;
+    f.first.signed_radius = key_plus >= 0.0 ? radius_plus : -radius_plus;  // Definition 7.1
+    f.first.width = f.first.halfspace ? 0.0 : radius_plus + key_plus;       // Definition 7.4
+    f.second.center = family.cc + key_minus * family.n;
+    f.second.radius = radius_minus;
+    f.second.signed_radius = key_minus <= 0.0 ? radius_minus : -radius_minus;
+    f.second.width = f.second.halfspace ? 0.0 : radius_minus - key_minus;
+    enclose(f.first, V, f.is_union ? plus : all);
+    enclose(f.second, V, f.is_union ? minus : all);
+  }
 
   // Algorithm 7.1/7.2: the side whose ball has the larger signed radius.
   if (split_plus < 0 && split_minus < 0) {
@@ -204,16 +208,29 @@ Flintstone<D> flintstone_of(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, c
     const double rr = std::copysign(std::sqrt(family.r2 + best_minus * best_minus), -best_minus);
     split = rq >= rr ? split_plus : split_minus;
   }
-  // Near-ties (vertices on about the same ball, e.g. a spherical cap) are
-  // broken by the height over the chord/plane: the split then lands in the
-  // middle of P instead of next to its boundary.
-  if (split >= 0) {
-    const int s = split == split_plus ? 1 : -1;
-    const double best = s > 0 ? best_plus : best_minus;
+  // Vertices barely off the chord line/plane get unstable keys (a tiny
+  // height divides a small excess), and near-ties (a spherical cap: every
+  // vertex on about the same ball) are decided by rounding. Either way
+  // Algorithm 7.1/7.2's vertex can sit next to P's boundary and split off a
+  // sliver. So a side whose vertices all stay below half the other side's
+  // height gives way to the other side, on the side only vertices at
+  // least a quarter of its greatest height compete, and keys within 2% of the
+  // ball radius count as equal, the higher vertex winning. Only in 3D: in 2D
+  // Algorithm 7.1's own rule keeps every flintstone an intersection (§7.2.2).
+  if (D == 3 && split >= 0) {
+    std::array<double, 2> tops{0.0, 0.0};  // greatest height on the −/+ side
+    for (const Candidate& c : candidates) tops[c.side > 0] = std::max(tops[c.side > 0], c.height);
+    int s = split == split_plus ? 1 : -1;
+    if (tops[s > 0] < 0.5 * tops[s < 0]) s = -s;  // the chosen side is a sliver by the chord/plane
+    const double top = tops[s > 0];
+    double best = std::numeric_limits<double>::quiet_NaN();
+    for (const Candidate& c : candidates)
+      if (c.side == s && c.height >= 0.25 * top && (std::isnan(best) || (s > 0 ? c.key > best : c.key < best)))
+        best = c.key;
     const double tolerance = 0.02 * std::sqrt(family.r2 + best * best);
     double height = -1.0;
     for (const Candidate& c : candidates)
-      if (c.side == s && std::abs(c.key - best) <= tolerance && c.height > height) {
+      if (c.side == s && c.height >= 0.25 * top && std::abs(c.key - best) <= tolerance && c.height > height) {
         height = c.height;
         split = c.vertex;
       }

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 
 namespace scanstation {
 
@@ -71,10 +72,6 @@ bool inside_brute_force(const Eigen::MatrixX2d& V, const Eigen::Vector2d& x) {
   }
   return odd;
 }
-
-}  // namespace scanstation
-
-namespace scanstation {
 
 namespace {
 

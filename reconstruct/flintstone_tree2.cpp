@@ -81,9 +81,14 @@ void release_subtree(FlintstoneTree2& tree, int id) {
 
 int FlintstoneTree2::levels() const {
   int deepest = 0;
-  for (std::size_t k = 0; k < nodes.size(); ++k)
-    if (std::find(free_nodes.begin(), free_nodes.end(), static_cast<int>(k)) == free_nodes.end())
-      deepest = std::max(deepest, nodes[k].depth);
+  std::vector<int> stack(top.begin(), top.end());
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    if (id < 0) continue;
+    deepest = std::max(deepest, nodes[static_cast<std::size_t>(id)].depth);
+    for (const int c : nodes[static_cast<std::size_t>(id)].child) stack.push_back(c);
+  }
   return deepest + 1;
 }
 

@@ -51,6 +51,7 @@ struct FlintstoneTree2 {
     return {Chain2{n.p, n.q, n.child[0]}, Chain2{n.q, n.s, n.child[1]}};
   }
   int live_nodes() const { return static_cast<int>(nodes.size() - free_nodes.size()); }
+  /// Number of approximation levels; the finest (the polygon) is levels() − 1.
   int levels() const;
   std::size_t storage_bytes() const;
 };

@@ -118,7 +118,16 @@ class Builder {
     FlintstoneNode3 root;
     Eigen::Vector3d center;
     double radius = 0.0;
-    root.corners = root_corners(V_, center, radius);
+    // The corners must lie on the surface: isolated vertices are left out.
+    std::vector<char> used(static_cast<std::size_t>(V_.rows()), 0);
+    for (Eigen::Index f = 0; f < F_.rows(); ++f)
+      for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(F_(f, k))] = 1;
+    std::vector<int> on_surface;
+    for (int v = 0; v < V_.rows(); ++v)
+      if (used[static_cast<std::size_t>(v)]) on_surface.push_back(v);
+    const Eigen::MatrixX3d surface = V_(on_surface, Eigen::all);
+    root.corners = root_corners(surface, center, radius);
+    for (int& corner : root.corners) corner = on_surface[static_cast<std::size_t>(corner)];
     const double reach = (V_.rowwise() - center.transpose()).rowwise().norm().maxCoeff();
     root.stone = ball_flintstone<3>(center, std::max(radius, reach));
     root.bound = root.stone.first;
@@ -450,9 +459,17 @@ class Builder {
     if (cuts.empty()) return {};
     build_adjacency(faces);
     std::unordered_set<std::uint64_t> cut_edges;
-    for (const Cut& cut : cuts) {
-      const std::vector<int> path = shortest_path(cut.from, cut.to);
-      for (std::size_t k = 1; k < path.size(); ++k) cut_edges.insert(undirected_key(path[k - 1], path[k]));
+    // One Dijkstra per distinct source (a three-split cuts from v_q thrice).
+    for (std::size_t first = 0; first < cuts.size();) {
+      std::size_t last = first;
+      while (last < cuts.size() && cuts[last].from == cuts[first].from) ++last;
+      shortest_paths(cuts[first].from, {cuts.begin() + static_cast<std::ptrdiff_t>(first), cuts.begin() + static_cast<std::ptrdiff_t>(last)});
+      for (std::size_t c = first; c < last; ++c)
+        for (int v = local_[static_cast<std::size_t>(cuts[c].to)];
+             v >= 0 && previous_[static_cast<std::size_t>(v)] >= 0; v = previous_[static_cast<std::size_t>(v)])
+          cut_edges.insert(undirected_key(vertices_[static_cast<std::size_t>(v)],
+                                          vertices_[static_cast<std::size_t>(previous_[static_cast<std::size_t>(v)])]));
+      first = last;
     }
     const auto crossable = [&](int f, int k) {
       return !cut_edges.count(undirected_key(face_vertex(f, k), face_vertex(f, (k + 1) % 3)));
@@ -536,37 +553,36 @@ class Builder {
       }
   }
 
-  /// Shortest edge path from → to over the node's faces (Dijkstra), as
-  /// global vertex indices, empty when from = to.
-  std::vector<int> shortest_path(int from, int to) {
-    const int source = local_[static_cast<std::size_t>(from)], target = local_[static_cast<std::size_t>(to)];
-    if (source < 0 || target < 0 || source == target) return {};
+  /// Shortest edge paths (Dijkstra over the node's faces) from `from` to the
+  /// cuts' ends, left in previous_ (local numbering; -1 at the source and at
+  /// unreached vertices).
+  void shortest_paths(int from, const std::vector<Cut>& cuts) {
     distance_.assign(vertices_.size(), std::numeric_limits<double>::infinity());
     previous_.assign(vertices_.size(), -1);
+    const int source = local_[static_cast<std::size_t>(from)];
+    if (source < 0) return;
+    std::size_t waiting = 0;
+    for (const Cut& cut : cuts) waiting += local_[static_cast<std::size_t>(cut.to)] >= 0 && cut.to != from;
     using Entry = std::pair<double, int>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
     distance_[static_cast<std::size_t>(source)] = 0.0;
     queue.push({0.0, source});
-    while (!queue.empty()) {
+    while (!queue.empty() && waiting > 0) {
       const auto [d, a] = queue.top();
       queue.pop();
-      if (a == target) break;
       if (d > distance_[static_cast<std::size_t>(a)]) continue;
-      const auto visit = [&](int b) {
-        const double nd = d + (point(vertices_[static_cast<std::size_t>(a)]) - point(vertices_[static_cast<std::size_t>(b)])).norm();
+      for (const Cut& cut : cuts) waiting -= cut.to != from && local_[static_cast<std::size_t>(cut.to)] == a;
+      const Eigen::Vector3d pa = point(vertices_[static_cast<std::size_t>(a)]);
+      for (int e = offsets_[static_cast<std::size_t>(a)]; e < offsets_[static_cast<std::size_t>(a) + 1]; ++e) {
+        const int b = adjacent_[static_cast<std::size_t>(e)];
+        const double nd = d + (pa - point(vertices_[static_cast<std::size_t>(b)])).norm();
         if (nd < distance_[static_cast<std::size_t>(b)]) {
           distance_[static_cast<std::size_t>(b)] = nd;
           previous_[static_cast<std::size_t>(b)] = a;
           queue.push({nd, b});
         }
-      };
-      for (int e = offsets_[static_cast<std::size_t>(a)]; e < offsets_[static_cast<std::size_t>(a) + 1]; ++e)
-        visit(adjacent_[static_cast<std::size_t>(e)]);
+      }
     }
-    std::vector<int> path;
-    if (previous_[static_cast<std::size_t>(target)] < 0) return path;
-    for (int v = target; v >= 0; v = previous_[static_cast<std::size_t>(v)]) path.push_back(vertices_[static_cast<std::size_t>(v)]);
-    return path;
   }
 
   /// Sorts the node's face range by label and appends one child per label.

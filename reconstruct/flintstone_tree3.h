@@ -65,6 +65,7 @@ struct FlintstoneTree3 {
   const FlintstoneNode3& root() const { return nodes.front(); }
   /// Ids of the nodes in the tree (insert_vertex leaves replaced ones behind).
   std::vector<int> reachable() const;
+  /// Number of approximation levels; the finest (the mesh) is levels() − 1.
   int levels() const;
   std::size_t storage_bytes() const;
 };

@@ -21,7 +21,7 @@ nlohmann::json errors_json(const ApproximationErrors& e) { return {{"e1", e.e1},
 template <typename Tree>
 nlohmann::json per_level(const Tree& tree, const char* pieces) {
   nlohmann::json levels = nlohmann::json::array();
-  for (int level = 0; level <= tree.levels(); ++level) {
+  for (int level = 0; level < tree.levels(); ++level) {
     const auto a = approximation(tree, level);
     levels.push_back({{"level", level}, {pieces, a.pieces.size()}, {"errors", errors_json(a.errors)}});
     if (a.errors.e1 == 0.0 && a.errors.e5 == 0.0) break;  // the original reached
@@ -57,17 +57,18 @@ class ApproximateCommand final : public Command {
     context.progress.finish();
     if (input.polygon) {
       if (balls_) throw InvalidInput("--balls is for 3D meshes; use --svg for a polygon");
-      run_2d(context, *input.polygon);
+      run_2d(context, input);
     } else {
       if (svg_) throw InvalidInput("--svg is for 2D polygons; use --balls for a mesh");
-      run_3d(context, *input.mesh);
+      run_3d(context, input);
     }
   }
 
  private:
-  void run_2d(CommandContext& context, const Polygon2& polygon) {
+  void run_2d(CommandContext& context, const BoundaryInput& input) {
+    const Polygon2& polygon = *input.polygon;
     StageTimer build(context.report, "build");
-    const FlintstoneTree2 tree = flintstone_tree(polygon);
+    const FlintstoneTree2 tree = polygon_tree(input);
     build.stop();
     StageTimer timer(context.report, "approximate");
     const PolygonApproximation a = level_ ? approximation(tree, *level_) : adaptive_approximation(tree, *max_error_);
@@ -84,9 +85,10 @@ class ApproximateCommand final : public Command {
     report(context, a.level, a.vertices.size(), "edges", a.errors);
   }
 
-  void run_3d(CommandContext& context, const TriangleMesh& mesh) {
+  void run_3d(CommandContext& context, const BoundaryInput& input) {
+    const TriangleMesh& mesh = *input.mesh;
     StageTimer build(context.report, "build");
-    const FlintstoneTree3 tree = flintstone_tree(mesh, tree_options_);
+    const FlintstoneTree3 tree = mesh_tree(input, tree_options_);
     build.stop();
     StageTimer timer(context.report, "approximate");
     const MeshApproximation a = level_ ? approximation(tree, *level_) : adaptive_approximation(tree, *max_error_);

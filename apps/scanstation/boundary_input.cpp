@@ -8,6 +8,7 @@ namespace scanstation::app {
 BoundaryInput read_boundary(const std::filesystem::path& path, const std::optional<std::string>& format,
                             ProgressCallback progress) {
   BoundaryInput input;
+  input.path = path;
   if (io::resolve_format(path, format) == io::FileFormat::svg) {
     input.polygon = io::read_polygon(path, {format, progress});
     return input;
@@ -22,6 +23,27 @@ BoundaryInput read_boundary(const std::filesystem::path& path, const std::option
                        "(or 2D points in boundary order for a polygon)");
   }
   return input;
+}
+
+namespace {
+template <typename Build>
+auto naming_file(const std::filesystem::path& path, const Build& build) {
+  try {
+    return build();
+  } catch (const TopologyError& e) {
+    throw InvalidInput(path.string() + ": " + e.what());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(path.string() + ": " + e.what());
+  }
+}
+}  // namespace
+
+FlintstoneTree2 polygon_tree(const BoundaryInput& input) {
+  return naming_file(input.path, [&] { return flintstone_tree(*input.polygon); });
+}
+
+FlintstoneTree3 mesh_tree(const BoundaryInput& input, const FlintstoneOptions3& options) {
+  return naming_file(input.path, [&] { return flintstone_tree(*input.mesh, options); });
 }
 
 }  // namespace scanstation::app

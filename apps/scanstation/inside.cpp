@@ -48,7 +48,7 @@ class InsideCommand final : public Command {
     };
     if (input.polygon) {
       StageTimer build(context.report, "build");
-      const FlintstoneTree2 tree = flintstone_tree(*input.polygon);
+      const FlintstoneTree2 tree = polygon_tree(input);
       build.stop();
       StageTimer timer(context.report, "query");
       for (Eigen::Index i = 0; i < queries.size(); ++i)
@@ -56,7 +56,7 @@ class InsideCommand final : public Command {
       query_seconds = timer.stop();
     } else {
       StageTimer build(context.report, "build");
-      const FlintstoneTree3 tree = flintstone_tree(*input.mesh);
+      const FlintstoneTree3 tree = mesh_tree(input);
       build.stop();
       StageTimer timer(context.report, "query");
       for (Eigen::Index i = 0; i < queries.size(); ++i) answer(inside(tree, queries.positions.row(i).transpose(), &stats));

@@ -39,12 +39,12 @@ class IntersectCommand final : public Command {
     {
       StageTimer build(context.report, "build");
       if (a.polygon) {
-        const FlintstoneTree2 ta = flintstone_tree(*a.polygon), tb = flintstone_tree(*b.polygon);
+        const FlintstoneTree2 ta = polygon_tree(a), tb = polygon_tree(b);
         build.stop();
         StageTimer timer(context.report, pairs_ ? "compute" : "detect");
         pairs = intersecting_edges(ta, tb, !pairs_, &stats);
       } else {
-        const FlintstoneTree3 ta = flintstone_tree(*a.mesh), tb = flintstone_tree(*b.mesh);
+        const FlintstoneTree3 ta = mesh_tree(a), tb = mesh_tree(b);
         build.stop();
         StageTimer timer(context.report, pairs_ ? "compute" : "detect");
         pairs = intersecting_faces(ta, tb, !pairs_, &stats);

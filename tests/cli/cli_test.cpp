@@ -308,9 +308,11 @@ TEST(Cli, FlintstoneApproximateInsideIntersect) {
   EXPECT_EQ(slurp(dir / "pairs.txt"), "");
   r = scanstation("intersect " + elephant + " " + elephant);
   EXPECT_THAT(r.out, testing::HasSubstr("boundaries intersect: yes"));
-  // The approximation may cut itself or be non-manifold (§7.5): refused as input, exit 2.
-  r = scanstation("inside " + path(dir / "e.ply") + " " + elephant + " -o " + path(dir / "z.txt"));
-  EXPECT_EQ(r.exit_code, 2);
+  // An open mesh is bad input: exit 1, naming the file and the edge.
+  const std::string open = path(test::cgal_data("meshes/mushroom.off"));
+  r = scanstation("inside " + open + " " + elephant + " -o " + path(dir / "z.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("mushroom.off: flintstone tree: the mesh is not closed"));
   // Usage errors exit 1 with a message.
   r = scanstation("approximate " + elephant + " -o " + path(dir / "x.ply"));
   EXPECT_EQ(r.exit_code, 1);

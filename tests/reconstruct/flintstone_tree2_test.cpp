@@ -149,7 +149,7 @@ TEST(FlintstoneApproximation2, LevelsRefineUpToTheOriginal) {
     EXPECT_LE(a.errors.e2, a.errors.e5 * (1 + 1e-6));   // the vertices lie in the flintstones
     previous = a.vertices.size();
   }
-  const PolygonApproximation finest = approximation(tree, tree.levels());
+  const PolygonApproximation finest = approximation(tree, tree.levels() - 1);
   ASSERT_EQ(finest.vertices.size(), 300u);
   for (int k = 0; k < 300; ++k) EXPECT_EQ(finest.vertices[static_cast<std::size_t>(k)], (tree.first + k) % 300);
   EXPECT_EQ(finest.errors.e1, 0.0);

@@ -60,7 +60,7 @@ void expect_valid_tree(const FlintstoneTree3& tree, const std::string& what) {
   ASSERT_EQ(static_cast<Eigen::Index>(leaf_faces.size()), tree.faces.rows()) << what;
   for (std::size_t k = 0; k < leaf_faces.size(); ++k) EXPECT_EQ(leaf_faces[k], static_cast<int>(k)) << what;
   // The finest approximation is the original mesh, orientation included.
-  const MeshApproximation finest = approximation(tree, tree.levels());
+  const MeshApproximation finest = approximation(tree, tree.levels() - 1);
   EXPECT_EQ(face_set(finest.faces), face_set(tree.faces)) << what;
   EXPECT_EQ(finest.errors.e1, 0.0) << what;
 }
@@ -182,6 +182,20 @@ TEST(FlintstoneTree3, DynamicInsertionRebuildsASubtree) {
   mesh.faces = tree.faces;
   expect_valid_tree(tree, "after insertions");
   expect_inclusion_matches_brute_force(tree, mesh, 1500, "after insertions");
+}
+
+TEST(FlintstoneTree3, IsolatedVerticesAreNotCorners) {
+  TriangleMesh mesh = sim::icosphere(2);
+  mesh.vertices.positions.conservativeResize(mesh.vertex_count() + 1, 3);
+  mesh.vertices.positions.bottomRows(1) << 40.0, 0.0, 0.0;  // far away, in no face
+  const FlintstoneTree3 tree = flintstone_tree(mesh);
+  for (const int corner : tree.root().corners) EXPECT_LT(corner, mesh.vertex_count() - 1);
+  // The same splits as without the isolated vertex.
+  const FlintstoneTree3 plain = flintstone_tree(sim::icosphere(2));
+  EXPECT_EQ(tree.root().corners, plain.root().corners);
+  EXPECT_EQ(tree.nodes.size(), plain.nodes.size());
+  expect_valid_tree(tree, "icosphere with an isolated vertex");
+  expect_inclusion_matches_brute_force(tree, mesh, 600, "icosphere with an isolated vertex");
 }
 
 TEST(FlintstoneTree3, RejectsOpenMeshes) {
