@@ -176,20 +176,20 @@ void write_tessellation_ply(const BezierSurface& surface, int density, const std
         for (const auto& [p, k] : numbering.corner_owner) {
           const auto [a, b] = grid_of_edge(k, 0);
           append_vertex(out, patch_corner(surface.patches[p], k),
-                        normal_direction(surface.patches[p], parameter(a, b)).normalized());
+                        unit_normal(surface.patches[p], parameter(a, b)));
           flush_if_full();
         }
         for (const auto& [p, k] : numbering.edge_owner)
           for (int step = 1; step < n; ++step) {
             const auto [a, b] = grid_of_edge(k, step);
             append_vertex(out, edge_point(surface.patches[p], k, step, n),
-                          normal_direction(surface.patches[p], parameter(a, b)).normalized());
+                          unit_normal(surface.patches[p], parameter(a, b)));
             flush_if_full();
           }
         for (const CubicTriangle& patch : surface.patches)
           for (int a = 1; a < n; ++a)
             for (int b = 1; a + b < n; ++b) {
-              append_vertex(out, evaluate(patch, parameter(a, b)), normal_direction(patch, parameter(a, b)).normalized());
+              append_vertex(out, evaluate(patch, parameter(a, b)), unit_normal(patch, parameter(a, b)));
               flush_if_full();
             }
         const auto append_face = [&](std::size_t i, std::size_t j, std::size_t k) {
@@ -231,7 +231,7 @@ TriangleMesh tessellate(const BezierSurface& surface, int density) {
         if (inserted) {
           positions.push_back(x);
           const Barycentric uvw(double(n - a - b) / n, double(a) / n, double(b) / n);
-          normals.push_back(normal_direction(patch, uvw).normalized());
+          normals.push_back(unit_normal(patch, uvw));
         }
         local[slot++] = it->second;
       }
