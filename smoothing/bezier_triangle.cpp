@@ -47,6 +47,12 @@ Eigen::Vector3d normal_direction(const CubicTriangle& patch, const Barycentric& 
   return directional_derivative(patch, uvw, {-1.0, 1.0, 0.0}).cross(directional_derivative(patch, uvw, {-1.0, 0.0, 1.0}));
 }
 
+Eigen::Vector3d unit_normal(const CubicTriangle& patch, const Barycentric& uvw) {
+  Eigen::Vector3d n = normal_direction(patch, uvw);
+  if (n.squaredNorm() == 0.0) n = normal_direction(patch, uvw + 1e-6 * (Barycentric::Constant(1.0 / 3.0) - uvw));
+  return n.squaredNorm() > 0.0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+}
+
 CubicTriangle subpatch(const CubicTriangle& patch, const Barycentric& r0, const Barycentric& r1,
                        const Barycentric& r2) {
   const std::array<const Barycentric*, 3> corner{&r0, &r1, &r2};

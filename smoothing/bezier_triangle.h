@@ -28,6 +28,11 @@ Eigen::Vector3d directional_derivative(const CubicTriangle& patch, const Barycen
 /// counter-clockwise seen from outside it points outwards (Equation 8.4).
 Eigen::Vector3d normal_direction(const CubicTriangle& patch, const Barycentric& uvw);
 
+/// normal_direction normalised; where it vanishes (a singular point, e.g. a
+/// corner whose two edge derivatives are parallel) the limit from the patch's
+/// inside, taken a small step towards the centre; zero if that vanishes too.
+Eigen::Vector3d unit_normal(const CubicTriangle& patch, const Barycentric& uvw);
+
 /// The same surface restricted to the domain triangle whose corners have
 /// barycentric coordinates r0, r1, r2 in the patch's domain: its control
 /// points are the blossom values b_ijk = P[r0^i, r1^j, r2^k] (Bézier

@@ -152,8 +152,15 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
     L(i, i) = Q.row(i).norm();
     if (L(i, i) > 0.0) Q.row(i) /= L(i, i);
   }
+  // Exact solution unless the constraints are (nearly) dependent, which
+  // shows as a vanishing diagonal of L or as control points thrown further
+  // than the macro edge is long; then the closest point of the well-posed
+  // part (pseudo-inverse, small singular values dropped): bounded, not G¹,
+  // and counted.
   const Eigen::Matrix<double, 8, 1> diagonal = L.diagonal();
+  const double reach = 100.0 * (sb[B_corner] - sa[A_corner]).norm();
   Points x = old;
+  bool met = false;
   if (diagonal.minCoeff() > 1e-9 * diagonal.maxCoeff()) {
     for (int step = 0; step < 2; ++step) {
       // Small fixed sizes: coefficient-wise products and a hand-written
@@ -165,11 +172,16 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
       }
       x += Q.transpose().lazyProduct(y);
     }
-  } else {
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 8, unknowns>> cod(A);
-    x += cod.solve(rhs - A.lazyProduct(x));
+    met = (x - old).rowwise().norm().maxCoeff() <= reach;
   }
-  const bool met = (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm());
+  if (!met) {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, 8, unknowns>> cod;
+    cod.setThreshold(1e-6);
+    cod.compute(A);
+    x = old + cod.solve(rhs - A.lazyProduct(old));
+    met = (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm()) &&
+          (x - old).rowwise().norm().maxCoeff() <= reach;
+  }
   const Eigen::Vector3d new_z = x.row(Z);
   sa[B_corner] = sb[A_corner] = tb[B_corner] = ta[A_corner] = new_z;
   sa[outer_near_B] = ta[outer_near_A] = x.row(Ya).transpose();

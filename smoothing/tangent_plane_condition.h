@@ -17,7 +17,13 @@ inline Eigen::Vector2d end_coefficients(const Eigen::Vector3d& along, const Eige
   const double ll = left.dot(left), lr = left.dot(right), rr = right.dot(right);
   const double la = left.dot(along), ra = right.dot(along);
   const double det = ll * rr - lr * lr;
-  return {(-la * rr + ra * lr) / det, (-ra * ll + la * lr) / det};
+  if (det > 1e-24 * ll * rr) return {(-la * rr + ra * lr) / det, (-ra * ll + la * lr) / det};
+  // Degenerate ends (left ∥ right, or a zero vector, where the vertex normal
+  // is nearly perpendicular to its faces): the smallest (f, g) that fits,
+  // finite, so the rest of the surface is still built; the edge is then not G¹
+  // and the verification reports it.
+  const double scale = ll + rr;
+  return scale > 0.0 ? Eigen::Vector2d(-la / scale, -ra / scale) : Eigen::Vector2d::Zero();
 }
 
 }  // namespace scanstation

@@ -126,11 +126,17 @@ class SmoothCommand final : public Command {
     const G1Verification g1 = verify_g1(surface);
     const Oscillation wiggle = oscillation(surface, V, mesh.faces);
     verify_timer.stop();
+    // PLY is streamed patch by patch (large inputs); other formats and the
+    // reflection-line picture go through the tessellated mesh in memory.
+    const bool stream = output_.extension() == ".ply" && !zebra_;
     StageTimer tessellate_timer(context.report, "tessellation");
-    const TriangleMesh dense = tessellate(surface, density_);
+    const TriangleMesh dense = stream ? TriangleMesh{} : tessellate(surface, density_);
     tessellate_timer.stop();
     StageTimer write_timer(context.report, "write");
-    io::write_mesh(output_, dense, {std::nullopt, std::nullopt, context.overwrite});
+    if (stream)
+      write_tessellation_ply(surface, density_, output_, context.overwrite);
+    else
+      io::write_mesh(output_, dense, {std::nullopt, std::nullopt, context.overwrite});
     if (patches_) io::write_file_atomically(*patches_, patches_json(surface, scheme_), context.overwrite);
     if (zebra_) io::write_file_atomically(*zebra_, reflection_lines_png(dense, mesh), context.overwrite);
     write_timer.stop();
@@ -149,7 +155,7 @@ class SmoothCommand final : public Command {
                 {"samples", g1.samples},
                 {"unmatched_edges", g1.unmatched_edges}}},
         {"oscillation", {{"max_relative", wiggle.max_relative}, {"mean_relative", wiggle.mean_relative}}},
-        {"tessellation", {{"density", density_}, {"vertices", dense.vertex_count()}, {"faces", dense.face_count()}}}};
+        {"tessellation", {{"density", density_}, {"streamed", stream}, {"faces", surface.patches.size() * density_ * density_}}}};
     std::printf("wrote %s: %zu cubic patches over %lld triangles, largest normal angle across patch edges %.3g rad, "
                 "%zu normal(s) adjusted\n",
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),

@@ -103,11 +103,16 @@ int create_temporary(const fs::path& path, fs::path& temp) {
 }  // namespace
 
 void write_file_atomically(const fs::path& path, std::string_view content, Overwrite overwrite) {
+  write_file_atomically_streamed(path, [content](const ByteSink& sink) { sink(content); }, overwrite);
+}
+
+void write_file_atomically_streamed(const fs::path& path, const std::function<void(const ByteSink&)>& produce,
+                                    Overwrite overwrite) {
   check_writable(path, overwrite);
   fs::path temp;
   int fd = create_temporary(path, temp);
   try {
-    write_all(fd, content, temp);
+    produce([fd, &temp](std::string_view piece) { write_all(fd, piece, temp); });
     if (::fsync(fd) != 0) throw IoError(os_error("cannot flush", temp, errno));
     const int closed = ::close(fd);
     fd = -1;

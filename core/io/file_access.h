@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -20,6 +21,13 @@ std::string read_file(const std::filesystem::path& path);
 /// never replaced (checked atomically at the rename) and InvalidInput is
 /// thrown; IoError when the folder is not writable.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content, Overwrite overwrite);
+
+/// The same for content made in pieces: `produce` is called once with a sink
+/// that appends each piece to the temporary file, so a large output never
+/// sits in memory whole.
+using ByteSink = std::function<void(std::string_view)>;
+void write_file_atomically_streamed(const std::filesystem::path& path, const std::function<void(const ByteSink&)>& produce,
+                                    Overwrite overwrite);
 
 /// Throws InvalidInput when `path` exists and overwrite is refused: lets a
 /// command fail before doing long work whose result it could not keep.
