@@ -4,8 +4,9 @@
 //
 //   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton] MESH.off ...
 //
-// --method picks our side: the thesis' γ-indicator pipeline (default) or
-// one of the comparison baselines of §5.6.
+// --method picks our side: by default what `scanstation reconstruct` does in
+// 3D (area change and γ-indicator), or the thesis' γ-indicator, or one of the
+// comparison baselines of §5.6.
 //
 // Prints one table row per mesh: time, closed / genus, every point on the
 // boundary, triangle recall — for constriction and for AFSR — and the means.
@@ -76,7 +77,8 @@ Row advancing_front(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
 
 int main(int argc, char** argv) {
   double noise = 0.0;
-  ReconstructionOptions options;
+  ReconstructionOptions options;  // the CLI's 3D default
+  options.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
   std::vector<std::string> files;
   for (int a = 1; a < argc; ++a) {
     if (std::string(argv[a]) == "--noise" && a + 1 < argc) {
@@ -84,6 +86,7 @@ int main(int argc, char** argv) {
     } else if (std::string(argv[a]) == "--method" && a + 1 < argc) {
       const std::string method = argv[++a];
       if (method == "min-area-change") options.constriction.criterion = ConstrictionCriterion::minimal_area_change;
+      if (method == "gamma") options.constriction.criterion = ConstrictionCriterion::gamma_indicator;
       if (method == "voronoi-skeleton") options.voronoi_skeleton = VoronoiSkeletonOptions{};
     } else {
       files.emplace_back(argv[a]);

@@ -78,6 +78,13 @@ class EdgeCounter {
   std::size_t used_ = 0;
 };
 
+// The γ-indicator's weight in ConstrictionCriterion::area_change_and_gamma,
+// chosen by measurement: 1/4 keeps most of the area criterion's gain on real
+// meshes (mean triangle recall 0.706 vs 0.714 alone, 0.654 for the γ-indicator
+// alone, on CGAL's 26 closed genus-0 meshes) and its volume on surfaces of
+// revolution (candlestick 1.09× the true volume, vs 3.0× for the area alone).
+constexpr double kGammaWeight = 0.25;
+
 struct Candidate {
   double key;
   int cell;
@@ -262,19 +269,22 @@ class Constrictor {
   }
 
   double key(int c, const int (&faces)[D + 1], int n) const {
-    if (options_.criterion == ConstrictionCriterion::minimal_area_change) {
-      // Expression (4.1): (Σ interior faces − Σ boundary faces) / Σ all faces;
-      // "area" is length in 2D.
-      double inner = 0.0, outer = 0.0;
-      for (int i = 0; i <= D; ++i) {
-        const double m = face_measure(c, i);
-        (std::find(faces, faces + n, i) != faces + n ? outer : inner) += m;
-      }
-      return (inner - outer) / (inner + outer);
+    const auto gamma_sum = [&] {  // §5.3: two boundary faces of one tetrahedron add up
+      double sum = 0.0;
+      for (int k = 0; k < n; ++k) sum += gamma_indicator(dt_, c, faces[k]);
+      return sum;
+    };
+    if (options_.criterion == ConstrictionCriterion::gamma_indicator) return gamma_sum();
+    // Expression (4.1): (Σ interior faces − Σ boundary faces) / Σ all faces;
+    // "area" is length in 2D.
+    double inner = 0.0, outer = 0.0;
+    for (int i = 0; i <= D; ++i) {
+      const double m = face_measure(c, i);
+      (std::find(faces, faces + n, i) != faces + n ? outer : inner) += m;
     }
-    double sum = 0.0;  // §5.3: two boundary faces of one tetrahedron add up
-    for (int k = 0; k < n; ++k) sum += gamma_indicator(dt_, c, faces[k]);
-    return sum;
+    const double area_change = (inner - outer) / (inner + outer);
+    if (options_.criterion == ConstrictionCriterion::minimal_area_change) return area_change;
+    return area_change + kGammaWeight * gamma_sum() / n;
   }
 
   double face_measure(int c, int i) const {

@@ -15,6 +15,10 @@ namespace scanstation {
 enum class ConstrictionCriterion {
   gamma_indicator,      ///< smallest γ-indicator (Definitions 5.1, 5.2), the thesis' rule
   minimal_area_change,  ///< smallest Expression (4.1), the baseline of §4.3.3 / §5.6
+  /// Expression (4.1) plus a quarter of the mean γ-indicator of the cell's
+  /// boundary faces: the area criterion, steered by the γ-indicator where
+  /// area changes tie (regular rings of a surface of revolution)
+  area_change_and_gamma,
 };
 
 struct ConstrictionOptions {

@@ -44,7 +44,8 @@ class DemoCommand final : public Command {
         segments_);
     simulate.stop();
 
-    ReconstructionOptions options;
+    ReconstructionOptions options;  // as `reconstruct --method auto` does in 3D
+    options.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
     options.constriction.progress = context.progress.stage("constrict");
     const SurfaceReconstruction r = reconstruct_surface(object.vertices.positions, options);
     context.progress.finish();
