@@ -44,7 +44,7 @@ struct BrownConrady {
       const Eigen::Vector2d tangential{2.0 * p1 * xy + p2 * (r2 + 2.0 * x.x() * x.x()),
                                        p1 * (r2 + 2.0 * x.y() * x.y()) + 2.0 * p2 * xy};
       const Eigen::Vector2d next = (distorted - tangential) / radial;
-      if ((next - x).norm() < 1e-16) return next;
+      if ((next - x).squaredNorm() < 1e-28) return next;  // 1e-14: far below a pixel's 1e-3
       x = next;
     }
     return x;
