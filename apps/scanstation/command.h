@@ -47,5 +47,6 @@ std::unique_ptr<Command> make_info_command(CLI::App& parent);
 std::unique_ptr<Command> make_demo_command(CLI::App& parent);
 std::unique_ptr<Command> make_reconstruct_command(CLI::App& parent);
 std::unique_ptr<Command> make_graph_command(CLI::App& parent);
+std::unique_ptr<Command> make_stereo_command(CLI::App& parent);
 
 }  // namespace scanstation::app

@@ -32,6 +32,7 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_graph_command(cli));
   commands.push_back(app::make_reconstruct_command(cli));
   commands.push_back(app::make_demo_command(cli));
+  commands.push_back(app::make_stereo_command(cli));
 
   try {
     cli.parse(argc, argv);

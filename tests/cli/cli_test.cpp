@@ -42,7 +42,7 @@ TEST(Cli, VersionHelpAndUsageErrors) {
   EXPECT_THAT(r.out, testing::HasSubstr("scanstation "));
   r = scanstation("--help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* sub : {"convert", "info", "graph", "reconstruct", "demo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
+  for (const char* sub : {"convert", "info", "graph", "reconstruct", "demo", "stereo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
   for (const char* sub : {"convert", "info", "demo"}) {
     r = scanstation(std::string(sub) + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub;
@@ -266,6 +266,25 @@ TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
   EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
   EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
   EXPECT_GT(report["triangle_recall"].get<double>(), 0.0);
+}
+
+TEST(Cli, StereoOnTheMiddleburyPairWithGroundTruth) {
+  ScratchFolder dir;
+  const std::string data = "/usr/share/doc/opencv-doc/examples/data/";
+  Outcome r = scanstation("stereo " + data + "aloeL.jpg " + data + "aloeR.jpg -o " + path(dir / "d.png") +
+                          " --truth " + data + "aloeGT.png --report " + path(dir / "d.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("above 1 px"));
+  const auto report = nlohmann::json::parse(slurp(dir / "d.json"));
+  EXPECT_LT(report["result"]["truth"]["bad_above_1px"].get<double>(), 0.2);
+  EXPECT_EQ(report["result"]["width"], 1282);
+  EXPECT_GT(std::filesystem::file_size(dir / "d.png"), 1000u);
+  r = scanstation("stereo " + data + "aloeL.jpg " + data + "missing.jpg -o " + path(dir / "e.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("missing.jpg"));
+  r = scanstation("stereo " + data + "aloeL.jpg " + data + "aloeR.jpg -o " + path(dir / "e.png") + " --disparities 100");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("multiple of 16"));
 }
 
 }  // namespace
