@@ -1,12 +1,12 @@
 #include "acquisition/scan_accuracy.h"
 
+#include "acquisition/point_grid.h"
 #include "core/errors.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 #include <vector>
 
 namespace scanstation::acquisition {
@@ -46,31 +46,9 @@ SphereFit fit_sphere(const Eigen::MatrixX3d& points) {
 double coverage(const Eigen::MatrixX3d& surface_samples, const Eigen::MatrixX3d& scanned, double radius) {
   if (!(radius > 0)) throw InvalidInput("coverage: the radius must be positive");
   if (surface_samples.rows() == 0) return 0.0;
-  // Scanned points hashed into cubes of side `radius`: a neighbour within
-  // `radius` sits in one of the 27 cubes around a sample.
-  const auto cell = [radius](const Eigen::Vector3d& p) {
-    return Eigen::Vector3i((p / radius).array().floor().cast<int>());
-  };
-  const auto key = [](const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.x())) * 73856093u) ^
-           (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.y())) * 19349663u) ^
-           (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.z())) * 83492791u);
-  };
-  std::unordered_multimap<std::uint64_t, Eigen::Index> grid;
-  for (Eigen::Index i = 0; i < scanned.rows(); ++i) grid.emplace(key(cell(scanned.row(i))), i);
+  const PointGrid grid(scanned, radius);
   Eigen::Index covered = 0;
-  for (Eigen::Index s = 0; s < surface_samples.rows(); ++s) {
-    const Eigen::Vector3d p = surface_samples.row(s);
-    const Eigen::Vector3i c = cell(p);
-    bool near = false;
-    for (int dx = -1; dx <= 1 && !near; ++dx)
-      for (int dy = -1; dy <= 1 && !near; ++dy)
-        for (int dz = -1; dz <= 1 && !near; ++dz) {
-          const auto [first, last] = grid.equal_range(key(c + Eigen::Vector3i(dx, dy, dz)));
-          for (auto it = first; it != last && !near; ++it) near = (scanned.row(it->second).transpose() - p).norm() <= radius;
-        }
-    covered += near;
-  }
+  for (Eigen::Index s = 0; s < surface_samples.rows(); ++s) covered += !grid.within(surface_samples.row(s)).empty();
   return static_cast<double>(covered) / static_cast<double>(surface_samples.rows());
 }
 
