@@ -1,5 +1,6 @@
 #include "acquisition/laser_line.h"
 #include "acquisition/laser_triangulation.h"
+#include "acquisition/outlier_removal.h"
 #include "core/errors.h"
 #include "sim/random.h"
 #include "test_support.h"
@@ -113,6 +114,37 @@ TEST(LaserTriangulation, RecoversPointsOfTheLightPlaneThroughADistortedLens) {
     EXPECT_EQ(points.cloud.colors(i, 0), 77);
   }
   EXPECT_EQ(points.confidence.size(), 200u);
+}
+
+}  // namespace
+}  // namespace scanstation::acquisition
+
+namespace scanstation::acquisition {
+namespace {
+
+TEST(OutlierRemoval, StrayPointsGoSurfacePointsStay) {
+  sim::Random random(11);
+  LaserScanPoints points;
+  const Eigen::Index surface = 3000, stray = 30;
+  points.cloud.positions.resize(surface + stray, 3);
+  points.cloud.colors.resize(surface + stray, 3);
+  for (Eigen::Index i = 0; i < surface; ++i) {
+    // A dense stripe pattern on a unit-square patch: every point has neighbours.
+    points.cloud.positions.row(i) << random.uniform(), (i % 30) / 30.0, 0.001 * random.normal();
+    points.confidence.push_back(1.0);
+  }
+  for (Eigen::Index i = surface; i < surface + stray; ++i) {
+    points.cloud.positions.row(i) << random.uniform(-5, 5), random.uniform(-5, 5), random.uniform(1, 5);
+    points.confidence.push_back(0.5);
+  }
+  points.cloud.colors.setConstant(9);
+  EXPECT_EQ(remove_isolated_points(points, 0.05, 3), stray);
+  EXPECT_EQ(points.cloud.size(), surface);
+  EXPECT_EQ(points.cloud.colors.rows(), surface);
+  EXPECT_EQ(points.confidence.size(), static_cast<std::size_t>(surface));
+  EXPECT_LT(points.cloud.positions.col(2).cwiseAbs().maxCoeff(), 0.01);
+  EXPECT_EQ(remove_isolated_points(points, 0.05, 3), 0);
+  test::expect_error<InvalidInput>([&] { remove_isolated_points(points, 0.0, 3); }, {"radius"});
 }
 
 }  // namespace
