@@ -9,42 +9,6 @@
 
 namespace scanstation::acquisition {
 
-std::optional<std::vector<cv::Point2f>> find_chessboard(const cv::Mat& image, cv::Size inner_corners) {
-  cv::Mat grey = image;
-  if (image.channels() == 3) cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
-  std::vector<cv::Point2f> corners;
-  if (!cv::findChessboardCorners(grey, inner_corners, corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
-    return std::nullopt;
-  cv::cornerSubPix(grey, corners, {11, 11}, {-1, -1},
-                   cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01));
-  return corners;
-}
-
-namespace {
-
-std::vector<cv::Point3f> board_points(cv::Size inner_corners, double square_size) {
-  std::vector<cv::Point3f> points;
-  for (int r = 0; r < inner_corners.height; ++r)
-    for (int c = 0; c < inner_corners.width; ++c)
-      points.emplace_back(static_cast<float>(c * square_size), static_cast<float>(r * square_size), 0.0f);
-  return points;
-}
-
-CameraIntrinsics calibrate_one(const std::vector<std::vector<cv::Point3f>>& objects,
-                               const std::vector<std::vector<cv::Point2f>>& corners, cv::Size image_size) {
-  CameraIntrinsics camera;
-  cv::Mat K, distortion, per_view;
-  std::vector<cv::Mat> rvecs, tvecs;
-  camera.rms = cv::calibrateCamera(objects, corners, image_size, K, distortion, rvecs, tvecs, cv::noArray(),
-                                   cv::noArray(), per_view);
-  camera.camera_matrix = K;
-  camera.distortion = distortion;
-  camera.per_view_rms.assign(per_view.begin<double>(), per_view.end<double>());
-  return camera;
-}
-
-}  // namespace
-
 StereoCalibration calibrate_stereo(const std::vector<cv::Mat>& left_images, const std::vector<cv::Mat>& right_images,
                                    cv::Size inner_corners, double square_size, StereoModel model) {
   if (left_images.size() != right_images.size())
@@ -67,14 +31,14 @@ StereoCalibration calibrate_stereo(const std::vector<cv::Mat>& left_images, cons
                        std::to_string(inner_corners.height) + " chessboard was found in both images of only " +
                        std::to_string(result.used_views.size()) + " pairs; at least 3 are needed");
   result.image_size = left_images.front().size();
-  const std::vector<std::vector<cv::Point3f>> objects(left_corners.size(), board_points(inner_corners, square_size));
+  const std::vector<std::vector<cv::Point3f>> objects(left_corners.size(), chessboard_points(inner_corners, square_size));
 
   cv::Mat K1, D1, K2, D2;
   int flags = 0;
   cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-6);
   if (model == StereoModel::standard) {
-    result.left = calibrate_one(objects, left_corners, result.image_size);
-    result.right = calibrate_one(objects, right_corners, result.image_size);
+    result.left = calibrate_camera(left_corners, inner_corners, square_size, result.image_size);
+    result.right = calibrate_camera(right_corners, inner_corners, square_size, result.image_size);
     K1 = cv::Mat(result.left.camera_matrix), D1 = result.left.distortion.clone();
     K2 = cv::Mat(result.right.camera_matrix), D2 = result.right.distortion.clone();
     flags = cv::CALIB_USE_INTRINSIC_GUESS;

@@ -3,6 +3,8 @@
 // left, and the rectification, with per-view and overall reprojection RMS.
 #pragma once
 
+#include "acquisition/camera_calibration.h"
+
 #include <opencv2/core.hpp>
 
 #include <optional>
@@ -10,19 +12,6 @@
 #include <vector>
 
 namespace scanstation::acquisition {
-
-/// Sub-pixel inner corners of a chessboard with `inner_corners` (columns ×
-/// rows) in an 8-bit image, or nothing when the board is not found whole.
-std::optional<std::vector<cv::Point2f>> find_chessboard(const cv::Mat& image, cv::Size inner_corners);
-
-/// One camera: K, distortion (k1, k2, p1, p2, k3 or OpenCV's longer vectors),
-/// RMS reprojection error over all corners and per view (pixels).
-struct CameraIntrinsics {
-  cv::Matx33d camera_matrix;
-  cv::Mat distortion;
-  double rms = 0;
-  std::vector<double> per_view_rms;
-};
 
 /// Which model and flags the joint stereo refinement uses.
 /// standard       each camera calibrated alone (k1, k2, p1, p2, k3), then every

@@ -58,6 +58,22 @@ cv::Mat speckle_field(int rows, int cols, double contrast, std::uint64_t seed) {
   return cv::max(field, 0.0);
 }
 
+// Ray parameter and albedo where a ray meets the chessboard, or t = −1.
+std::pair<double, double> board_hit(const ChessboardTarget& board, const Eigen::Vector3d& eye,
+                                    const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d n = board.across.cross(board.down);
+  const double facing = n.dot(direction);
+  if (std::abs(facing) < 1e-12) return {-1.0, 0.0};
+  const double t = n.dot(board.origin - eye) / facing;
+  const Eigen::Vector3d q = eye + t * direction - board.origin;
+  const double a = board.across.dot(q) / board.square, b = board.down.dot(q) / board.square;
+  // Squares from −1 to columns (rows) in square units, one more of margin.
+  if (!(t > 0) || a < -2 || a > board.columns + 1 || b < -2 || b > board.rows + 1) return {-1.0, 0.0};
+  const bool on_squares = a >= -1 && a <= board.columns && b >= -1 && b <= board.rows;
+  const bool dark = on_squares && (static_cast<long>(std::floor(a)) + static_cast<long>(std::floor(b))) % 2 == 0;
+  return {t, dark ? board.black : board.white};
+}
+
 }  // namespace
 
 struct SceneRenderer::Impl {
@@ -69,8 +85,8 @@ struct SceneRenderer::Impl {
   explicit Impl(Scene s) : scene(std::move(s)) {
     const auto& V = scene.object.vertices.positions;
     const auto& F = scene.object.faces;
-    if (F.rows() == 0) throw InvalidInput("scene renderer: the object mesh has no triangles");
-    if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
+    if (F.rows() == 0 && !scene.board) throw InvalidInput("scene renderer: the object mesh has no triangles");
+    if (F.rows() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= V.rows()))
       throw InvalidInput("scene renderer: a triangle refers to a vertex that does not exist");
     face_normals.resize(F.rows(), 3);
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
@@ -84,20 +100,22 @@ struct SceneRenderer::Impl {
     if (!device) throw SolverError("scene renderer: Embree could not create a device");
     rtc_scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(rtc_scene, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                                 RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                                 static_cast<std::size_t>(V.rows())));
-    for (Eigen::Index v = 0; v < V.rows(); ++v)
-      for (int k = 0; k < 3; ++k) vertices[3 * v + k] = static_cast<float>(V(v, k));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
-                                                                   RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                                   static_cast<std::size_t>(F.rows())));
-    for (Eigen::Index f = 0; f < F.rows(); ++f)
-      for (int k = 0; k < 3; ++k) indices[3 * f + k] = static_cast<unsigned>(F(f, k));
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(rtc_scene, geometry);
-    rtcReleaseGeometry(geometry);
+    if (F.rows() > 0) {  // a board-only scene has no mesh
+      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                   RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                                   static_cast<std::size_t>(V.rows())));
+      for (Eigen::Index v = 0; v < V.rows(); ++v)
+        for (int k = 0; k < 3; ++k) vertices[3 * v + k] = static_cast<float>(V(v, k));
+      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                     RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                                     static_cast<std::size_t>(F.rows())));
+      for (Eigen::Index f = 0; f < F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) indices[3 * f + k] = static_cast<unsigned>(F(f, k));
+      rtcCommitGeometry(geometry);
+      rtcAttachGeometry(rtc_scene, geometry);
+      rtcReleaseGeometry(geometry);
+    }
     rtcCommitScene(rtc_scene);
   }
 
@@ -186,7 +204,20 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
       Eigen::Vector3d normal;
       const Material* material = &scene.object_material;
       HitKind kind = HitKind::object;
-      if (face < 0 || !(t > 0)) {
+      Material board_material{0, 0.02, 10.0};
+      if (scene.board) {
+        const auto [t_board, albedo] = board_hit(*scene.board, eye, direction);
+        if (t_board > 0 && (face < 0 || !(t > 0) || t_board < t)) {
+          face = -1;
+          t = t_board;
+          normal = scene.board->across.cross(scene.board->down).normalized();
+          if (normal.dot(direction) > 0) normal = -normal;
+          board_material.albedo = albedo;
+          material = &board_material;
+          kind = HitKind::board;
+        }
+      }
+      if (kind != HitKind::board && (face < 0 || !(t > 0))) {
         const double t_platter = direction.z() < 0 ? -eye.z() / direction.z() : -1.0;
         const Eigen::Vector3d p = eye + t_platter * direction;
         if (!(t_platter > 0) || p.head<2>().norm() > scene.platter_radius) continue;
@@ -194,7 +225,7 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
         normal = Eigen::Vector3d::UnitZ();
         material = &scene.platter_material;
         kind = HitKind::platter;
-      } else {
+      } else if (kind == HitKind::object) {
         normal = impl_->face_normals.row(face);
         if (normal.dot(direction) > 0) normal = -normal;  // seen from inside (open meshes)
       }

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace scanstation::sim {
@@ -44,21 +45,38 @@ struct SensorModel {
   bool noise = true;                  // false: an exact, noise-free rendering (still blurred and quantised)
 };
 
+/// A chessboard calibration target standing on the platter (it turns with
+/// it): inner corner (0, 0) at `origin` (object frame), columns along unit
+/// `across`, rows along unit `down`; (inner_corners + 1) squares each way
+/// and a white margin of one square. It casts no shadows.
+struct ChessboardTarget {
+  Point3 origin = Point3::Zero();
+  Eigen::Vector3d across = Eigen::Vector3d::UnitX(), down = -Eigen::Vector3d::UnitZ();
+  int columns = 9, rows = 6;  // inner corners
+  double square = 5.0;
+  double black = 0.05, white = 0.85;  // albedos
+
+  /// The station-independent object-frame position of inner corner (c, r).
+  Point3 corner(int c, int r) const { return origin + square * (c * across + r * down); }
+};
+
 /// The scene in the station frame (see core/station_geometry.h): the object's
-/// mesh is given in the object frame, standing on the platter (z ≥ 0).
+/// mesh is given in the object frame, standing on the platter (z ≥ 0); it may
+/// be empty when a board is shown.
 struct Scene {
   TriangleMesh object;
   Material object_material;
   double platter_radius = 120.0;
   Material platter_material{0.25, 0.02, 10.0};
   std::vector<LineLaser> lasers;
+  std::optional<ChessboardTarget> board;
   double ambient = 40.0;                                     // grey levels for albedo 1
   Eigen::Vector3d light_direction{0.3, -0.5, 1.0};           // towards the room light
   double light_intensity = 90.0;                             // grey levels for albedo 1
 };
 
 /// What a pixel's ray hits.
-enum class HitKind : std::uint8_t { none = 0, object = 1, platter = 2 };
+enum class HitKind : std::uint8_t { none = 0, object = 1, platter = 2, board = 3 };
 
 /// Per-pixel ground truth of one view (all images height × width).
 /// kind       CV_8U, a HitKind
