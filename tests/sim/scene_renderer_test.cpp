@@ -161,3 +161,47 @@ TEST(SceneRenderer, RejectsMeshWithoutTriangles) {
 
 }  // namespace
 }  // namespace scanstation::sim
+
+namespace scanstation::sim {
+namespace {
+
+TEST(SceneRenderer, ChessboardTargetTurnsWithThePlatterAndShowsItsSquares) {
+  const TurntableLaserRig rig = turntable_laser_rig(60.0, 60.0, 320, 240);
+  Scene scene;
+  ChessboardTarget board;
+  board.square = 8.0;
+  board.origin = {-32.0, 0.0, 50.0};
+  scene.board = board;
+  const SceneRenderer renderer(scene);
+  const double angle = 0.4;
+  const RenderedView view = renderer.cast(rig.camera, angle);
+  SensorModel exact;
+  exact.noise = false;
+  exact.defocus_sigma = 0;
+  const cv::Mat frame = renderer.expose(view, {}, 1, exact);
+  const Eigen::Vector3d normal = board.across.cross(board.down);
+  int on_board = 0, dark = 0;
+  for (int r = 0; r < view.truth.kind.rows; ++r)
+    for (int c = 0; c < view.truth.kind.cols; ++c) {
+      if (view.truth.kind.at<std::uint8_t>(r, c) != static_cast<std::uint8_t>(HitKind::board)) continue;
+      ++on_board;
+      const cv::Vec3d q = view.truth.points.at<cv::Vec3d>(r, c);
+      const Eigen::Vector3d p{q[0], q[1], q[2]};
+      EXPECT_NEAR(normal.dot(p - board.origin), 0.0, 1e-9);
+      // The square a pixel shows follows from its ground-truth point.
+      const double a = board.across.dot(p - board.origin) / board.square, b = board.down.dot(p - board.origin) / board.square;
+      const bool square = a > -0.9 && a < board.columns - 0.1 && b > -0.9 && b < board.rows - 0.1 &&
+                          std::abs(a - std::round(a)) > 0.1 && std::abs(b - std::round(b)) > 0.1;
+      if (square && (static_cast<long>(std::floor(a)) + static_cast<long>(std::floor(b))) % 2 == 0) {
+        ++dark;
+        EXPECT_LT(frame.at<std::uint8_t>(r, c), 25);
+      } else if (square) {
+        EXPECT_GT(frame.at<std::uint8_t>(r, c), 30);
+      }
+    }
+  EXPECT_GT(on_board, 5000);
+  EXPECT_GT(dark, 1000);
+}
+
+}  // namespace
+}  // namespace scanstation::sim
