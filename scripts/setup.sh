@@ -10,6 +10,7 @@ packages=(
   # libraries
   libcgal-dev libeigen3-dev libopencv-dev libgpiod-dev libusb-1.0-0-dev linux-libc-dev
   libtbb-dev libembree-dev libcli11-dev libspdlog-dev nlohmann-json3-dev
+  libopencv-contrib-dev  # ximgproc: WLS disparity filtering for stereo
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # public data used by the tests: CGAL's meshes and scans, OpenCV's stereo images

@@ -51,5 +51,6 @@ std::unique_ptr<Command> make_approximate_command(CLI::App& parent);
 std::unique_ptr<Command> make_inside_command(CLI::App& parent);
 std::unique_ptr<Command> make_intersect_command(CLI::App& parent);
 std::unique_ptr<Command> make_smooth_command(CLI::App& parent);
+std::unique_ptr<Command> make_stereo_command(CLI::App& parent);
 
 }  // namespace scanstation::app

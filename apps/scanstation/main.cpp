@@ -36,6 +36,7 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_intersect_command(cli));
   commands.push_back(app::make_smooth_command(cli));
   commands.push_back(app::make_demo_command(cli));
+  commands.push_back(app::make_stereo_command(cli));
 
   try {
     cli.parse(argc, argv);

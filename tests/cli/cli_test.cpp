@@ -43,7 +43,7 @@ TEST(Cli, VersionHelpAndUsageErrors) {
   EXPECT_THAT(r.out, testing::HasSubstr("scanstation "));
   r = scanstation("--help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* sub : {"convert", "info", "graph", "reconstruct", "demo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
+  for (const char* sub : {"convert", "info", "graph", "reconstruct", "demo", "stereo"}) EXPECT_THAT(r.out, testing::HasSubstr(sub));
   for (const char* sub : {"convert", "info", "demo"}) {
     r = scanstation(std::string(sub) + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub;
@@ -378,6 +378,25 @@ TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --density 0").exit_code, 1);
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --scheme bogus").exit_code, 1);
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --normals given").exit_code, 1);
+}
+
+TEST(Cli, StereoOnTheMiddleburyPairWithGroundTruth) {
+  ScratchFolder dir;
+  const std::string data = "/usr/share/doc/opencv-doc/examples/data/";
+  Outcome r = scanstation("stereo " + data + "aloeL.jpg " + data + "aloeR.jpg -o " + path(dir / "d.png") +
+                          " --truth " + data + "aloeGT.png --report " + path(dir / "d.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("above 1 px"));
+  const auto report = nlohmann::json::parse(slurp(dir / "d.json"));
+  EXPECT_LT(report["result"]["truth"]["bad_above_1px"].get<double>(), 0.2);
+  EXPECT_EQ(report["result"]["width"], 1282);
+  EXPECT_GT(std::filesystem::file_size(dir / "d.png"), 1000u);
+  r = scanstation("stereo " + data + "aloeL.jpg " + data + "missing.jpg -o " + path(dir / "e.png"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("missing.jpg"));
+  r = scanstation("stereo " + data + "aloeL.jpg " + data + "aloeR.jpg -o " + path(dir / "e.png") + " --disparities 100");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("multiple of 16"));
 }
 
 }  // namespace

@@ -1,0 +1,14 @@
+// Radius outlier removal for scanned points: stray triangulations (a noise
+// peak, a reflection) stand alone, real surface points have neighbours.
+#pragma once
+
+#include "acquisition/laser_triangulation.h"
+
+namespace scanstation::acquisition {
+
+/// Keeps the points with at least `min_neighbours` others within `radius`,
+/// with their colours and confidences, in their order. Returns how many
+/// were removed. Throws InvalidInput for a radius ≤ 0.
+Eigen::Index remove_isolated_points(LaserScanPoints& points, double radius, int min_neighbours);
+
+}  // namespace scanstation::acquisition

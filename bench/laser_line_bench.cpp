@@ -1,0 +1,69 @@
+// Laser-line extraction on 1280×960 8-bit frame pairs, one core: pairs per
+// second (items_per_second), for each sub-pixel fit, against the floor of any
+// extractor — one saturating subtraction of the pair (cv::subtract), which
+// every method must at least read.
+//
+//   build/bench/laser_line_bench
+//
+// The pair is a rendered chalice on the simulated turntable with default
+// noise, so the noise estimate, rejections and fits see realistic rows.
+#include "acquisition/laser_line.h"
+#include "sim/scene_renderer.h"
+#include "sim/surface_of_revolution.h"
+#include "sim/turntable_rig.h"
+
+#include <benchmark/benchmark.h>
+#include <opencv2/core.hpp>
+
+namespace {
+
+using namespace scanstation;
+
+struct Pair {
+  cv::Mat on, off;
+};
+
+const Pair& frame_pair() {
+  static const Pair pair = [] {
+    const Eigen::MatrixX2d profile = 40.0 * sim::chalice_profile(300);
+    const sim::TurntableLaserRig rig = sim::turntable_laser_rig(80.0, 60.0, 1280, 960);
+    const sim::SceneRenderer renderer(sim::turntable_scene(sim::surface_of_revolution(profile, 720), rig, 60.0));
+    const sim::RenderedView view = renderer.cast(rig.camera, 0.3);
+    return Pair{renderer.expose(view, {0}, 1), renderer.expose(view, {}, 2)};
+  }();
+  return pair;
+}
+
+void SubtractReference(benchmark::State& state) {
+  const Pair& pair = frame_pair();
+  cv::setNumThreads(1);
+  cv::Mat difference;
+  for (auto _ : state) {
+    cv::subtract(pair.on, pair.off, difference);
+    benchmark::DoNotOptimize(difference.data);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void Extract(benchmark::State& state) {
+  const Pair& pair = frame_pair();
+  acquisition::LaserLineOptions options;
+  options.fit = static_cast<acquisition::PeakFit>(state.range(0));
+  std::size_t peaks = 0;
+  for (auto _ : state) {
+    const acquisition::LaserLine line = acquisition::extract_laser_line(pair.on, pair.off, options);
+    peaks = line.peaks.size();
+    benchmark::DoNotOptimize(line.peaks.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["peaks"] = static_cast<double>(peaks);
+}
+
+BENCHMARK(SubtractReference)->Unit(benchmark::kMicrosecond);
+BENCHMARK(Extract)->ArgName("fit")->Arg(static_cast<int>(acquisition::PeakFit::centre_of_mass))
+    ->Arg(static_cast<int>(acquisition::PeakFit::gaussian))->Arg(static_cast<int>(acquisition::PeakFit::parabolic))
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
