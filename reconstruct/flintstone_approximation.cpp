@@ -149,17 +149,26 @@ class Stitcher {
  private:
   Eigen::Vector3d point(int v) const { return tree_.vertices.row(v).transpose(); }
 
+  /// The face across each edge, found among the faces around its end vertex.
   void opposite_faces() {
-    std::unordered_map<std::uint64_t, int> half_edges;
-    half_edges.reserve(static_cast<std::size_t>(3 * F_.rows()));
-    const auto key = [](int a, int b) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-    };
+    const auto V = static_cast<std::size_t>(tree_.vertices.rows());
+    std::vector<int> start(V + 1, 0), around(static_cast<std::size_t>(3 * F_.rows()));
     for (int f = 0; f < F_.rows(); ++f)
-      for (int k = 0; k < 3; ++k) half_edges.emplace(key(F_(f, k), F_(f, (k + 1) % 3)), f);
+      for (int k = 0; k < 3; ++k) ++start[static_cast<std::size_t>(F_(f, k)) + 1];
+    for (std::size_t v = 1; v <= V; ++v) start[v] += start[v - 1];
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int f = 0; f < F_.rows(); ++f)
+      for (int k = 0; k < 3; ++k) around[static_cast<std::size_t>(fill[static_cast<std::size_t>(F_(f, k))]++)] = f;
     across_.resize(static_cast<std::size_t>(3 * F_.rows()));
     for (int f = 0; f < F_.rows(); ++f)
-      for (int k = 0; k < 3; ++k) across_[static_cast<std::size_t>(3 * f + k)] = half_edges.at(key(F_(f, (k + 1) % 3), F_(f, k)));
+      for (int k = 0; k < 3; ++k) {
+        const int a = F_(f, k), b = F_(f, (k + 1) % 3);
+        for (int j = start[static_cast<std::size_t>(b)]; j < start[static_cast<std::size_t>(b) + 1]; ++j) {
+          const int g = around[static_cast<std::size_t>(j)];
+          if ((F_(g, 0) == b && F_(g, 1) == a) || (F_(g, 1) == b && F_(g, 2) == a) || (F_(g, 2) == b && F_(g, 0) == a))
+            across_[static_cast<std::size_t>(3 * f + k)] = g;
+        }
+      }
   }
 
   bool on_boundary(int f, int k) const {
@@ -236,6 +245,7 @@ class Stitcher {
       changed = false;
       const auto mark = [&](std::size_t v) { changed |= !marked_[v]; marked_[v] = 1; };
       std::unordered_map<std::uint64_t, Stretch> owner;  // edge → the stretch giving it
+      owner.reserve(static_cast<std::size_t>(F_.rows()));
       for (const auto& cycles : walks_)
         for (const std::vector<int>& walk : cycles) {
           std::vector<std::size_t> at;
