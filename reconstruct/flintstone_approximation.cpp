@@ -138,11 +138,24 @@ class Stitcher {
   }
 
   /// Triangles of region r, oriented like the faces.
+  /// A node with several boundary cycles (a sphere with holes) keeps its
+  /// topology: the largest polygon of each cycle is joined to the first by
+  /// a bridge edge (walked in both directions) before the ears are clipped.
   std::vector<Eigen::RowVector3i> triangles(int r) {
     std::vector<Eigen::RowVector3i> result;
-    for (const std::vector<int>& walk : walks_[static_cast<std::size_t>(r)])
-      for (std::vector<int>& polygon : simple_polygons(marks_on(walk)))
-        if (polygon.size() >= 3) clip_ears(polygon, normals_[static_cast<std::size_t>(r)], result);
+    std::vector<int> joined;
+    const Eigen::Vector3d& normal = normals_[static_cast<std::size_t>(r)];
+    for (const std::vector<int>& walk : walks_[static_cast<std::size_t>(r)]) {
+      std::vector<std::vector<int>> polygons = simple_polygons(marks_on(walk));
+      const auto largest = std::max_element(polygons.begin(), polygons.end(),
+                                            [](const auto& a, const auto& b) { return a.size() < b.size(); });
+      for (auto it = polygons.begin(); it != polygons.end(); ++it)
+        if (it->size() >= 3 && it != largest) clip_ears(*it, normal, result);
+      if (largest->size() < 3) continue;
+      if (joined.empty()) joined = std::move(*largest);
+      else bridge(joined, *largest);
+    }
+    if (!joined.empty()) clip_ears(joined, normal, result);
     return result;
   }
 
@@ -308,6 +321,29 @@ class Stitcher {
           (point(F_(f, 1)) - point(F_(f, 0))).cross(point(F_(f, 2)) - point(F_(f, 0)));
   }
 
+  /// Joins `hole` into `polygon` by the shortest edge between them that is
+  /// not an edge yet: … u, w, (hole from w), w, u, ….
+  void bridge(std::vector<int>& polygon, const std::vector<int>& hole) {
+    std::size_t best_u = 0, best_w = 0;
+    std::pair<bool, double> best{true, std::numeric_limits<double>::infinity()};
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+      for (std::size_t j = 0; j < hole.size(); ++j) {
+        if (polygon[i] == hole[j]) continue;
+        const std::pair<bool, double> score{used_.count(undirected_key(polygon[i], hole[j])) > 0,
+                                            (point(polygon[i]) - point(hole[j])).squaredNorm()};
+        if (score < best) {
+          best = score;
+          best_u = i;
+          best_w = j;
+        }
+      }
+    std::vector<int> merged(polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(best_u) + 1);
+    for (std::size_t j = 0; j <= hole.size(); ++j) merged.push_back(hole[(best_w + j) % hole.size()]);
+    merged.insert(merged.end(), polygon.begin() + static_cast<std::ptrdiff_t>(best_u), polygon.end());
+    used_.insert(undirected_key(polygon[best_u], hole[best_w]));
+    polygon = std::move(merged);
+  }
+
   /// Ear clipping: prefers ears convex about the region's normal, then the
   /// shortest diagonal; a diagonal that is already an edge is never taken
   /// while another ear remains (it would be shared by four triangles).
@@ -316,22 +352,27 @@ class Stitcher {
       const std::size_t n = polygon.size();
       std::size_t best = 0;
       std::tuple<bool, bool, double> best_score{true, true, std::numeric_limits<double>::infinity()};
+      bool found = false;
       for (std::size_t k = 0; k < n; ++k) {
         const int p = polygon[(k + n - 1) % n], c = polygon[k], q = polygon[(k + 1) % n];
+        if (p == q || p == c || c == q) continue;  // around a bridge end
         const bool repeated = used_.count(undirected_key(p, q)) > 0;
         const bool reflex = (point(c) - point(p)).cross(point(q) - point(c)).dot(normal) <= 0.0;
         const std::tuple<bool, bool, double> score{repeated, reflex, (point(q) - point(p)).squaredNorm()};
-        if (score < best_score) {
+        if (!found || score < best_score) {
           best_score = score;
           best = k;
+          found = true;
         }
       }
+      if (!found) return;
       const int p = polygon[(best + n - 1) % n], c = polygon[best], q = polygon[(best + 1) % n];
       out.emplace_back(p, c, q);
       used_.insert(undirected_key(p, q));
       polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
     }
-    out.emplace_back(polygon[0], polygon[1], polygon[2]);
+    if (polygon[0] != polygon[1] && polygon[1] != polygon[2] && polygon[2] != polygon[0])
+      out.emplace_back(polygon[0], polygon[1], polygon[2]);
   }
 
   const FlintstoneTree3& tree_;
