@@ -135,18 +135,47 @@ class Stitcher {
     walk_boundaries(nodes.size());
     separate_repeated_stretches();
     region_normals(nodes.size());
+    region_euler(tree, nodes);
   }
 
   /// Triangles of region r, oriented like the faces.
-  /// A node with several boundary cycles (a sphere with holes) keeps its
-  /// topology: the largest polygon of each cycle is joined to the first by
-  /// a bridge edge (walked in both directions) before the ears are clipped.
+  /// A node keeps its topology where it can: all its boundary cycles are
+  /// joined by bridge edges (walked in both directions) into one polygon
+  /// whose ears are clipped — the Euler characteristic of that triangulation
+  /// is d − m + 1 + bridges (d distinct vertices, m polygon entries). When that
+  /// differs from the node's own (V − E + F of its faces), the node's boundary
+  /// touches itself like a figure eight: such cycles are split at repeated
+  /// vertices and the largest piece of each cycle is bridged.
   std::vector<Eigen::RowVector3i> triangles(int r) {
     std::vector<Eigen::RowVector3i> result;
-    std::vector<int> joined;
     const Eigen::Vector3d& normal = normals_[static_cast<std::size_t>(r)];
+    std::vector<std::vector<int>> cycles;
+    long target = euler_[static_cast<std::size_t>(r)];
     for (const std::vector<int>& walk : walks_[static_cast<std::size_t>(r)]) {
-      std::vector<std::vector<int>> polygons = simple_polygons(marks_on(walk));
+      std::vector<int> cycle = marks_on(walk);
+      std::vector<int> distinct = cycle;
+      std::sort(distinct.begin(), distinct.end());
+      if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) ++target;  // left out: a filled hole
+      else cycles.push_back(std::move(cycle));
+    }
+    std::vector<int> everything;
+    std::size_t entries = 0;
+    for (const auto& cycle : cycles) {
+      entries += cycle.size();
+      everything.insert(everything.end(), cycle.begin(), cycle.end());
+    }
+    std::sort(everything.begin(), everything.end());
+    const long distinct = std::unique(everything.begin(), everything.end()) - everything.begin();
+    const long bridges = cycles.empty() ? 0 : static_cast<long>(cycles.size()) - 1;
+    const bool whole = distinct - static_cast<long>(entries + 2 * static_cast<std::size_t>(bridges)) + 1 + bridges == target;
+    std::vector<int> joined;
+    for (std::vector<int>& cycle : cycles) {
+      if (whole) {
+        if (joined.empty()) joined = std::move(cycle);
+        else bridge(joined, cycle);
+        continue;
+      }
+      std::vector<std::vector<int>> polygons = simple_polygons(cycle);
       const auto largest = std::max_element(polygons.begin(), polygons.end(),
                                             [](const auto& a, const auto& b) { return a.size() < b.size(); });
       for (auto it = polygons.begin(); it != polygons.end(); ++it)
@@ -313,6 +342,27 @@ class Stitcher {
     return result;
   }
 
+  /// V − E + F of each region's faces.
+  void region_euler(const FlintstoneTree3& tree, const std::vector<int>& nodes) {
+    std::vector<int> stamp(static_cast<std::size_t>(tree.vertices.rows()), -1);
+    euler_.assign(nodes.size(), 0);
+    for (std::size_t r = 0; r < nodes.size(); ++r) {
+      const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(nodes[r])];
+      long vertices = 0, boundary = 0;
+      for (int k = 0; k < node.face_count; ++k) {
+        const int f = tree.face_order[static_cast<std::size_t>(node.first_face + k)];
+        for (int j = 0; j < 3; ++j) {
+          boundary += on_boundary(f, j);
+          if (stamp[static_cast<std::size_t>(F_(f, j))] != static_cast<int>(r)) {
+            stamp[static_cast<std::size_t>(F_(f, j))] = static_cast<int>(r);
+            ++vertices;
+          }
+        }
+      }
+      euler_[r] = vertices - (3 * node.face_count + boundary) / 2 + node.face_count;
+    }
+  }
+
   /// Area-weighted normal of each region.
   void region_normals(std::size_t regions) {
     normals_.assign(regions, Eigen::Vector3d::Zero());
@@ -382,6 +432,7 @@ class Stitcher {
   std::vector<int> across_;
   std::vector<std::vector<std::vector<int>>> walks_;  ///< per region, its boundary cycles
   std::vector<Eigen::Vector3d> normals_;
+  std::vector<long> euler_;
   std::unordered_set<std::uint64_t> used_;              ///< edges of the approximation so far
 };
 

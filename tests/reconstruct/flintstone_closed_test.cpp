@@ -73,8 +73,9 @@ Eigen::MatrixX3i corner_triangles(const FlintstoneTree3& tree, const MeshApproxi
   return F;
 }
 
-/// Every level and the adaptive approximation at several bounds is closed;
-/// the finest level is still the original mesh.
+/// Every level and the adaptive approximation at several bounds is closed
+/// and has the mesh's Euler characteristic; the finest level is still the
+/// original mesh.
 void expect_every_approximation_closed(const TriangleMesh& mesh, const std::string& name) {
   const FlintstoneTree3 tree = flintstone_tree(mesh);
   int open_corner_triangles = 0, open_stitched = 0, other_topology = 0;
@@ -104,6 +105,7 @@ void expect_every_approximation_closed(const TriangleMesh& mesh, const std::stri
   std::printf("%s: %d levels; open edges summed over all levels and bounds: %d stitched, %d corner triangles only; "
               "%d approximations with another Euler characteristic than the mesh\n",
               name.c_str(), tree.levels(), open_stitched, open_corner_triangles, other_topology);
+  EXPECT_EQ(other_topology, 0) << name << ": approximations that are no longer spheres";
 }
 
 TEST(FlintstoneClosed3, Icospheres) {
