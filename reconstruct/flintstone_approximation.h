@@ -35,15 +35,20 @@ PolygonApproximation approximation(const FlintstoneTree2& tree, int level);
 /// flintstone (Error e5) exceeds `max_error`, so the result has e5 ≤ max_error.
 PolygonApproximation adaptive_approximation(const FlintstoneTree2& tree, double max_error);
 
-/// faces   #F by 3 corner triangles v_p v_s v_t of the approximating nodes
-///         (indices into the tree's vertices); void triangles (coalescing
-///         corners) are left out
+/// faces   #F by 3 triangles (indices into the tree's vertices) forming a
+///         closed mesh: each approximating node contributes the triangulated
+///         polygon of the marked vertices on its boundary — its corners
+///         v_p v_s v_t plus the corners and side splits its neighbours use
+///         there — so neighbours share their sides and nothing cracks
+///         (§7.3.2); a void node (coalescing corners) may contribute nothing
 /// pieces  the node each triangle approximates, same order
+/// nodes   the approximating nodes (each once)
 struct MeshApproximation {
   Eigen::MatrixX3i faces;
   int level = 0;
   ApproximationErrors errors;
   std::vector<int> pieces;
+  std::vector<int> nodes;
 };
 
 /// Level-ℓ approximation in 3D: nodes down to depth ℓ + 1 (ℓ = 0: the root

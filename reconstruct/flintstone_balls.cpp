@@ -12,7 +12,7 @@ constexpr int latitudes = 8;
 
 TriangleMesh flintstone_balls_mesh(const FlintstoneTree3& tree, const MeshApproximation& approximation) {
   std::vector<std::pair<const SignedBall<3>*, bool>> balls;
-  for (const int id : approximation.pieces) {
+  for (const int id : approximation.nodes) {
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
     if (node.leaf()) continue;
     if (!node.stone.first.halfspace) balls.push_back({&node.stone.first, true});
