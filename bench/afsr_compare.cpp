@@ -77,8 +77,7 @@ Row advancing_front(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
 
 int main(int argc, char** argv) {
   double noise = 0.0;
-  ReconstructionOptions options;  // the CLI's 3D default
-  options.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
+  ReconstructionOptions options = surface_defaults();  // as the command does in 3D
   std::vector<std::string> files;
   for (int a = 1; a < argc; ++a) {
     if (std::string(argv[a]) == "--noise" && a + 1 < argc) {

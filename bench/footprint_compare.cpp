@@ -82,7 +82,8 @@ void cgal_delaunay(const Eigen::MatrixX3d& P) {
 }
 
 void reconstruct(const Eigen::MatrixX3d& P) {
-  const SurfaceReconstruction r = reconstruct_surface(P);
+  ReconstructionOptions options = surface_defaults();  // as the command does in 3D
+  const SurfaceReconstruction r = reconstruct_surface(P, options);
   if (!r.statistics.all_on_boundary) std::puts("constriction left points inside");
 }
 

@@ -67,8 +67,9 @@ void CgalDelaunay3(benchmark::State& state) {
 void Reconstruct3(benchmark::State& state) {
   const Eigen::MatrixX3d& P = ellipsoid_points(state.range(0));
   double delaunay = 0, constriction = 0, flips = 0;
+  ReconstructionOptions options = surface_defaults();  // as the command does in 3D
   for (auto _ : state) {
-    const SurfaceReconstruction r = reconstruct_surface(P);
+    const SurfaceReconstruction r = reconstruct_surface(P, options);
     delaunay += r.statistics.delaunay_seconds;
     constriction += r.statistics.constriction_seconds;
     flips += r.statistics.flip_seconds;

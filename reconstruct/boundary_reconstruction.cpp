@@ -158,6 +158,12 @@ std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& bound
 
 }  // namespace
 
+ReconstructionOptions surface_defaults() {
+  ReconstructionOptions options;
+  options.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
+  return options;
+}
+
 SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const ReconstructionOptions& given) {
   SurfaceReconstruction out;
   BoundaryStatistics& s = out.statistics;

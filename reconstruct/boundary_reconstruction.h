@@ -97,6 +97,11 @@ struct CurveReconstruction {
   BoundaryStatistics statistics;
 };
 
+/// What `scanstation reconstruct` does with 3D points: the defaults with
+/// ConstrictionCriterion::area_change_and_gamma, which recovers the most true
+/// triangles on real meshes (the defaults keep the thesis' γ-indicator).
+ReconstructionOptions surface_defaults();
+
 /// Kept faces (options.constriction.keep) index the input points; duplicates
 /// of a point stand for its first occurrence.
 /// Throws InvalidInput for fewer than 4 (3) distinct points, or points all in

@@ -44,8 +44,7 @@ class DemoCommand final : public Command {
         segments_);
     simulate.stop();
 
-    ReconstructionOptions options;  // as `reconstruct --method auto` does in 3D
-    options.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
+    ReconstructionOptions options = surface_defaults();
     options.constriction.progress = context.progress.stage("constrict");
     const SurfaceReconstruction r = reconstruct_surface(object.vertices.positions, options);
     context.progress.finish();
