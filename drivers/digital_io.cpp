@@ -4,8 +4,8 @@ namespace scanstation::drivers {
 
 std::string LineAddress::describe() const {
   std::string text = chip.empty() ? std::string("any chip") : chip;
-  if (offset) text += ":" + std::to_string(*offset);
-  if (!name.empty()) text += " (" + name + ")";
+  if (offset) text.append(":").append(std::to_string(*offset));
+  if (!name.empty()) text.append(" (").append(name).append(")");
   if (active_low) text += " active-low";
   return text;
 }
