@@ -1,0 +1,142 @@
+#include "sim/devices/open_station.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "drivers/device_error.h"
+#include "drivers/libusb_device.h"
+#include "drivers/v4l2_camera.h"
+#include "sim/devices/sim_camera.h"
+#include "sim/devices/virtual_clock.h"
+
+namespace scanstation::sim {
+
+namespace {
+
+using drivers::StationDescription;
+
+bool simulated(const StationDescription& d, unsigned roles) {
+  bool all = true;
+  if (roles & camera_role) all &= d.camera.backend == "sim";
+  if (roles & laser_role)
+    for (const auto& laser : d.lasers) all &= laser.backend == "sim" || (laser.backend == "usb" && d.usb_simulated);
+  if (roles & turntable_role)
+    all &= d.turntable.backend == "sim" || (d.turntable.backend == "usb" && d.usb_simulated);
+  return all;
+}
+
+SimGpioChip& sim_chip(OpenStation& station, const StationDescription& d) {
+  if (!station.sim_chip) {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < d.lasers.size(); ++i) names.push_back("LASER" + std::to_string(i));
+    for (const char* name : {"STEP", "DIR", "EN"}) names.emplace_back(name);
+    station.sim_chip = std::make_unique<SimGpioChip>("simchip0", names, *station.clock, d.sim_state_file);
+  }
+  return *station.sim_chip;
+}
+
+drivers::UsbController& usb_board(OpenStation& station, const StationDescription& d) {
+  if (station.usb) return *station.usb;
+  std::unique_ptr<drivers::UsbEndpoints> endpoints;
+  if (d.usb_simulated) {
+    station.sim_board = std::make_unique<SimUsbBoard>(*station.clock);
+    endpoints = station.sim_board->endpoints();
+  } else {
+    if (d.usb_wait.count() > 0) drivers::wait_for_usb_controller(d.usb, d.usb_wait);
+    endpoints = std::make_unique<drivers::LibusbDevice>(d.usb);
+  }
+  station.usb = std::make_unique<drivers::UsbController>(std::move(endpoints), d.usb_timeout);
+  return *station.usb;
+}
+
+void open_camera(OpenStation& station, const StationDescription& d) {
+  if (d.camera.backend == "v4l2") {
+    station.camera = std::make_unique<drivers::V4l2Camera>(d.camera.device, drivers::linux_v4l2_system(), *station.clock);
+  } else {
+    SimCameraConfig config;
+    config.frame_rate = d.camera.sim_frame_rate;
+    station.camera = std::make_unique<SimCamera>(std::make_unique<TestPattern>(), *station.clock, config);
+  }
+  const auto adjustment = station.camera->set_format(d.camera.format);
+  if (adjustment.adjusted) station.notes.push_back("camera: " + adjustment.note);
+  for (const auto& [key, value] : d.camera.controls) {
+    const std::int64_t applied = station.camera->set_control(key, value);
+    if (applied != value)
+      station.notes.push_back("camera: " + key + " " + std::to_string(value) + " adjusted to " + std::to_string(applied));
+  }
+}
+
+void open_lasers(OpenStation& station, const StationDescription& d) {
+  for (std::size_t i = 0; i < d.lasers.size(); ++i) {
+    const auto& role = d.lasers[i];
+    std::unique_ptr<drivers::DigitalOutput> output;
+    if (role.backend == "usb") {
+      output = std::make_unique<drivers::UsbLaserOutput>(usb_board(station, d), role.usb_index);
+    } else if (role.backend == "gpio") {
+      if (!station.gpio) station.gpio = std::make_unique<drivers::GpiodProvider>();
+      output = station.gpio->request_output(role.line, d.consumer, false);
+    } else {
+      output = sim_chip(station, d).request_output({"", static_cast<unsigned>(i), ""}, d.consumer, false);
+    }
+    station.lasers.push_back(std::make_unique<drivers::Laser>(std::move(output), *station.clock, role.settle));
+  }
+}
+
+void open_turntable(OpenStation& station, const StationDescription& d) {
+  const auto& role = d.turntable;
+  if (role.backend == "usb") {
+    station.turntable = std::make_unique<drivers::UsbTurntable>(
+        usb_board(station, d), *station.clock,
+        drivers::UsbTurntableConfig{role.stepper.max_speed_deg_s, role.stepper.acceleration_deg_s2, role.stepper.settle,
+                                    std::chrono::milliseconds(10)});
+    return;
+  }
+  drivers::StepperLines lines;
+  if (role.backend == "gpio") {
+    if (!station.gpio) station.gpio = std::make_unique<drivers::GpiodProvider>();
+    lines.step = station.gpio->request_output(role.step, d.consumer, false);
+    lines.direction = station.gpio->request_output(role.direction, d.consumer, false);
+    lines.enable = station.gpio->request_output(role.enable, d.consumer, false);
+    if (role.home) lines.home = station.gpio->request_input(*role.home, d.consumer);
+  } else {
+    SimGpioChip& chip = sim_chip(station, d);
+    lines.step = chip.request_output({"", {}, "STEP"}, d.consumer, false);
+    lines.direction = chip.request_output({"", {}, "DIR"}, d.consumer, false);
+    lines.enable = chip.request_output({"", {}, "EN"}, d.consumer, false);
+  }
+  station.turntable = std::make_unique<drivers::StepperTurntable>(std::move(lines), *station.clock, role.stepper);
+}
+
+}  // namespace
+
+void OpenStation::make_safe() {
+  auto log = room_logger("drivers");
+  for (auto& laser : lasers) {
+    try {
+      laser->set(false);
+    } catch (const std::exception& e) {
+      log->error("safe state: laser {}: {}", laser->describe(), e.what());
+    }
+  }
+  if (turntable) {
+    try {
+      turntable->disable();
+    } catch (const std::exception& e) {
+      log->error("safe state: turntable: {}", e.what());
+    }
+  }
+}
+
+std::unique_ptr<OpenStation> open_station(const StationDescription& d, unsigned roles) {
+  auto station = std::make_unique<OpenStation>();
+  if (simulated(d, roles)) {
+    station->clock = std::make_unique<VirtualClock>();
+  } else {
+    station->clock = std::make_unique<drivers::MonotonicClock>();
+  }
+  if (roles & laser_role) open_lasers(*station, d);
+  if (roles & turntable_role) open_turntable(*station, d);
+  if (roles & camera_role) open_camera(*station, d);
+  return station;
+}
+
+}  // namespace scanstation::sim

@@ -1,0 +1,91 @@
+// Station description files: the examples in stations/ parse, bad values are
+// refused with file, line and field; a simulated station opens, scans a few
+// laser on/off pairs with settled frames, and ends in its safe state.
+#include "drivers/device_error.h"
+#include "drivers/frame_gate.h"
+#include "drivers/station_description.h"
+#include "sim/devices/open_station.h"
+#include "test_support.h"
+
+#include <fstream>
+
+namespace scanstation::drivers {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::filesystem::path stations() { return std::filesystem::path(SCANSTATION_SOURCE_DIR) / "stations"; }
+
+TEST(StationDescription, ExampleFilesParse) {
+  const StationDescription real = read_station(stations() / "example-real.toml");
+  EXPECT_EQ(real.name, "bench-1");
+  EXPECT_EQ(real.camera.backend, "v4l2");
+  EXPECT_EQ(real.camera.format, (CameraFormat{PixelFormat::grey, {1280, 720}, 4}));
+  ASSERT_EQ(real.camera.controls.size(), 3u);
+  EXPECT_EQ(real.camera.controls[0], (std::pair<std::string, std::int64_t>{"auto_exposure", 1}));
+  ASSERT_EQ(real.lasers.size(), 2u);
+  EXPECT_EQ(real.lasers[0].line.offset, 17u);
+  EXPECT_EQ(real.lasers[1].line.name, "GPIO27");
+  EXPECT_TRUE(real.turntable.enable.active_low);
+  EXPECT_EQ(real.turntable.home->offset, 25u);
+  EXPECT_DOUBLE_EQ(real.turntable.stepper.steps_per_rev(), 12800.0);
+  EXPECT_EQ(real.usb.vendor, 0x1209);
+  const StationDescription sim = real.simulated();
+  EXPECT_EQ(sim.camera.backend, "sim");
+  EXPECT_EQ(sim.turntable.backend, "sim");
+  EXPECT_EQ(read_station(stations() / "sim.toml").lasers.size(), 2u);
+}
+
+TEST(StationDescription, MistakesNameFileLineAndField) {
+  test::ScratchFolder folder;
+  auto check = [&](const std::string& text, std::initializer_list<std::string> parts) {
+    const auto file = folder / "station.toml";
+    std::ofstream(file) << text;
+    test::expect_error<FormatError>([&] { read_station(file); }, parts);
+  };
+  check("[camera]\nwidth = -3\n", {"station.toml:2", "camera.width", "integer in [16, 16384]"});
+  check("[camera]\nbackend = \"usb\"\n", {":2", "camera.backend", "\"sim\", \"v4l2\""});
+  check("[camera]\nformat = \"RGB3\"\n", {"camera.format", "GREY, Y16, YUYV or MJPG"});
+  check("[turntable]\nmicrostep = 16\n", {":2", "turntable.microstep: unknown key"});
+  check("[turntable]\nbackend = \"gpio\"\nstep = 1\ndir = 2\n", {"turntable.enable", "step, dir and enable"});
+  check("[[laser]]\nbackend = \"gpio\"\nline = 1.5\n", {":3", "laser[0].line", "offset"});
+  check("[camera\n", {"station.toml:1"});
+  test::expect_error<InvalidInput>([&] { read_station(folder / "missing.toml"); }, {"does not exist"});
+}
+
+TEST(OpenStation, SimulatedStationScansSettledPairsAndEndsSafe) {
+  StationDescription d = read_station(stations() / "sim.toml");
+  auto station = sim::open_station(d, sim::camera_role | sim::laser_role | sim::turntable_role);
+  ASSERT_TRUE(station->sim_chip);
+  station->camera->start();
+  for (int step = 0; step < 8; ++step) {
+    const Timestamp moved = station->turntable->rotate_by(45.0);
+    for (const bool on : {true, false}) {
+      const Timestamp settled = std::max(moved, station->lasers[0]->set(on));
+      const SettledFrame frame = grab_settled(*station->camera, *station->clock, settled, 1000ms);
+      EXPECT_GT(frame.frame.exposure_start, settled);
+      EXPECT_EQ(station->sim_chip->level_at(0, frame.frame.exposure_start), on);
+    }
+  }
+  EXPECT_NEAR(station->turntable->angle(), 360.0, 1e-9);
+  station->lasers[0]->set(true);
+  station.reset();  // normal end
+}
+
+TEST(OpenStation, UsbRolesOfASimulatedStationSpeakTheProtocol) {
+  StationDescription d;
+  d.lasers = {LaserRole{"usb", {}, 1, 2ms}};
+  d.turntable.backend = "usb";
+  d.usb_simulated = true;
+  auto station = sim::open_station(d, sim::laser_role | sim::turntable_role);
+  station->lasers[0]->set(true);
+  EXPECT_TRUE(station->sim_board->laser(1));
+  station->turntable->rotate_by(-30.0);
+  EXPECT_EQ(station->sim_board->position(), -267);
+  station->make_safe();
+  EXPECT_FALSE(station->sim_board->laser(1));
+  EXPECT_FALSE(station->sim_board->motor_enabled());
+}
+
+}  // namespace
+}  // namespace scanstation::drivers
