@@ -47,5 +47,9 @@ std::unique_ptr<Command> make_info_command(CLI::App& parent);
 std::unique_ptr<Command> make_demo_command(CLI::App& parent);
 std::unique_ptr<Command> make_reconstruct_command(CLI::App& parent);
 std::unique_ptr<Command> make_graph_command(CLI::App& parent);
+std::unique_ptr<Command> make_devices_command(CLI::App& parent);
+std::unique_ptr<Command> make_capture_command(CLI::App& parent);
+std::unique_ptr<Command> make_turntable_command(CLI::App& parent);
+std::unique_ptr<Command> make_laser_command(CLI::App& parent);
 
 }  // namespace scanstation::app
