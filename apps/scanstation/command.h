@@ -52,5 +52,9 @@ std::unique_ptr<Command> make_inside_command(CLI::App& parent);
 std::unique_ptr<Command> make_intersect_command(CLI::App& parent);
 std::unique_ptr<Command> make_smooth_command(CLI::App& parent);
 std::unique_ptr<Command> make_stereo_command(CLI::App& parent);
+std::unique_ptr<Command> make_devices_command(CLI::App& parent);
+std::unique_ptr<Command> make_capture_command(CLI::App& parent);
+std::unique_ptr<Command> make_turntable_command(CLI::App& parent);
+std::unique_ptr<Command> make_laser_command(CLI::App& parent);
 
 }  // namespace scanstation::app

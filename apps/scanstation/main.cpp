@@ -37,6 +37,10 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_smooth_command(cli));
   commands.push_back(app::make_demo_command(cli));
   commands.push_back(app::make_stereo_command(cli));
+  commands.push_back(app::make_devices_command(cli));
+  commands.push_back(app::make_capture_command(cli));
+  commands.push_back(app::make_turntable_command(cli));
+  commands.push_back(app::make_laser_command(cli));
 
   try {
     cli.parse(argc, argv);

@@ -1,5 +1,6 @@
 // End-to-end tests of the built `scanstation` binary: exit codes, messages,
 // outputs, reports and progress streams.
+#include "cli_support.h"
 #include "test_support.h"
 
 #include <nlohmann/json.hpp>
@@ -14,26 +15,9 @@ namespace scanstation {
 namespace {
 
 using test::ScratchFolder;
-
-struct Outcome {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Outcome scanstation(const std::string& args) {
-  ScratchFolder io;
-  const std::string command = std::string(SCANSTATION_BINARY) + " " + args + " >" + (io / "out").string() + " 2>" +
-                              (io / "err").string() + " </dev/null";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(io / "out"), slurp(io / "err")};
-}
+using test::Outcome;
+using test::scanstation;
+using test::slurp;
 
 std::string path(const std::filesystem::path& p) { return p.string(); }
 

@@ -1,0 +1,34 @@
+// Running the built `scanstation` binary from the CLI tests.
+#pragma once
+
+#include "test_support.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace scanstation::test {
+
+struct Outcome {
+  int exit_code;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline Outcome scanstation(const std::string& args) {
+  ScratchFolder io;
+  const std::string command = std::string(SCANSTATION_BINARY) + " " + args + " >" + (io / "out").string() + " 2>" +
+                              (io / "err").string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(io / "out"), slurp(io / "err")};
+}
+
+}  // namespace scanstation::test
