@@ -138,8 +138,34 @@ constexpr int max_attempts = 256;
 /// refining (the children are usually missed by the ray).
 constexpr int fan_limit = 4;
 
+/// The ray of one query as a segment x → x + length·direction, with the
+/// direction normalised once so each ball test below costs a few flops.
+struct QuerySegment {
+  Eigen::Vector3d x, q, direction;
+  double length;
+  QuerySegment(const Eigen::Vector3d& from, const Eigen::Vector3d& to) : x(from), q(to) {
+    const Eigen::Vector3d along = to - from;
+    length = along.norm();
+    direction = length > 0.0 ? Eigen::Vector3d(along / length) : Eigen::Vector3d::Zero();
+  }
+};
+
+/// One ball against the query: whether x lies outside it and whether the
+/// segment misses it (with the relative slack of segment_misses, so both
+/// decisions stay on the safe side: a missed ball never holds x).
+struct BallTest {
+  bool x_outside, segment_misses;
+};
+
+inline BallTest test_ball(const SignedBall<3>& ball, const QuerySegment& s) {
+  const Eigen::Vector3d w = ball.center - s.x;
+  const double r2 = ball.radius * ball.radius;
+  const double t = std::clamp(w.dot(s.direction), 0.0, s.length);
+  return {w.squaredNorm() > r2, (w - t * s.direction).squaredNorm() > r2 * (1.0 + 1e-9)};
+}
+
 /// One ray through the tree: 0/1 parity, 2 on the boundary, -1 degenerate.
-int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eigen::Vector3d& q, InclusionStats& count) {
+int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionStats& count) {
   const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
   bool odd = false;
   const auto add = [&](Crossing3 crossing) {
@@ -152,23 +178,32 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(stack.back())];
     const bool root = stack.back() == 0;
     stack.pop_back();
+    const BallTest bound = test_ball(node.bound, s);
     if (node.leaf()) {
-      if (segment_misses(node.bound, x, q)) continue;  // x is not on the face either
+      if (bound.segment_misses) continue;  // x is not on the face either
       const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
       ++count.crossing_tests;
-      const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), x, q));
+      const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), s.x, s.q));
       if (r != 0) return r;
       continue;
     }
     ++count.flintstone_tests;
     // The localizing volume is F(P) ∩ bound; when F(P) is a union only the
     // bound is used (the faces and the fan need not lie in a union of balls).
-    const bool beyond_bound = !node.bound.contains(x);
-    const bool beyond_stone = !node.stone.is_union && !node.stone.contains(x);
-    const bool outside = !root && (beyond_bound || beyond_stone);
-    if (outside && (segment_misses(node.bound, x, q) || (!node.stone.is_union && segment_misses(node.stone, x, q))))
-      continue;  // the node's faces lie in F(P) ∩ bound: no crossing
-    if (!outside || node.boundary_count > fan_limit) {
+    // A segment that misses the volume misses the node's faces; x then lies
+    // outside the volume as well.
+    bool outside = bound.x_outside;
+    if (!root) {
+      if (bound.segment_misses) continue;
+      if (!node.stone.is_union) {
+        const BallTest first = test_ball(node.stone.first, s);
+        if (first.segment_misses) continue;
+        const BallTest second = test_ball(node.stone.second, s);
+        if (second.segment_misses) continue;
+        outside = outside || first.x_outside || second.x_outside;
+      }
+    }
+    if (root || !outside || node.boundary_count > fan_limit) {
       for (int c = 0; c < node.child_count; ++c) stack.push_back(node.first_child + c);
       continue;
     }
@@ -179,7 +214,7 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
       const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
       if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
       ++count.crossing_tests;
-      if (add(segment_crossing(apex, point(a), point(b), x, q)) != 0) return -1;  // never on a fan: retry
+      if (add(segment_crossing(apex, point(a), point(b), s.x, s.q)) != 0) return -1;  // never on a fan: retry
     }
   }
   return odd ? 1 : 0;
@@ -194,7 +229,7 @@ bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStat
   ++count.flintstone_tests;
   if (!root.contains(x)) return false;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
-    const int r = tree_parity(tree, x, outward_point(x, attempt, root.first.center, root.first.radius), count);
+    const int r = tree_parity(tree, QuerySegment(x, outward_point(x, attempt, root.first.center, root.first.radius)), count);
     if (r >= 0) return r != 0;
   }
   return inside_brute_force(tree.vertices, tree.faces, x);
