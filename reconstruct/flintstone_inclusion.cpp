@@ -139,29 +139,43 @@ constexpr int max_attempts = 256;
 constexpr int fan_limit = 4;
 
 /// The ray of one query as a segment x → x + length·direction, with the
-/// direction normalised once so each ball test below costs a few flops.
+/// direction normalised once so each volume test below costs a few flops.
+/// A zero direction component gets a huge finite inverse, so the slab test
+/// needs no special case and never meets 0·∞.
 struct QuerySegment {
-  Eigen::Vector3d x, q, direction;
+  Eigen::Vector3d x, q;
+  Eigen::Array3d origin, direction, inverse;
   double length;
-  QuerySegment(const Eigen::Vector3d& from, const Eigen::Vector3d& to) : x(from), q(to) {
+  QuerySegment(const Eigen::Vector3d& from, const Eigen::Vector3d& to) : x(from), q(to), origin(from.array()) {
     const Eigen::Vector3d along = to - from;
     length = along.norm();
-    direction = length > 0.0 ? Eigen::Vector3d(along / length) : Eigen::Vector3d::Zero();
+    direction = length > 0.0 ? Eigen::Array3d(along.array() / length) : Eigen::Array3d::Zero();
+    inverse = direction.unaryExpr([](double d) { return d == 0.0 ? 1e300 : 1.0 / d; });
   }
 };
 
-/// One ball against the query: whether x lies outside it and whether the
-/// segment misses it (with the relative slack of segment_misses, so both
-/// decisions stay on the safe side: a missed ball never holds x).
-struct BallTest {
+/// A volume against the query: whether x lies outside it and whether the
+/// segment misses it. Both stay on the safe side: a missed volume never
+/// holds x, and a segment that meets the faces inside is never called missing.
+struct VolumeTest {
   bool x_outside, segment_misses;
 };
 
-inline BallTest test_ball(const SignedBall<3>& ball, const QuerySegment& s) {
-  const Eigen::Vector3d w = ball.center - s.x;
+/// A ball, with the relative slack of segment_misses.
+inline VolumeTest test_ball(const SignedBall<3>& ball, const QuerySegment& s) {
+  const Eigen::Array3d w = ball.center.array() - s.origin;
   const double r2 = ball.radius * ball.radius;
-  const double t = std::clamp(w.dot(s.direction), 0.0, s.length);
-  return {w.squaredNorm() > r2, (w - t * s.direction).squaredNorm() > r2 * (1.0 + 1e-9)};
+  const double t = std::clamp((w * s.direction).sum(), 0.0, s.length);
+  return {w.square().sum() > r2, (w - t * s.direction).square().sum() > r2 * (1.0 + 1e-9)};
+}
+
+/// A box (slab test). The box is widened by a relative slack when built, far
+/// more than the rounding here.
+inline VolumeTest test_box(const Eigen::AlignedBox3d& box, const QuerySegment& s) {
+  const Eigen::Array3d lo = box.min().array() - s.origin, hi = box.max().array() - s.origin;
+  const Eigen::Array3d a = lo * s.inverse, b = hi * s.inverse;
+  const double enter = std::max(a.min(b).maxCoeff(), 0.0), leave = std::min(a.max(b).minCoeff(), s.length);
+  return {(lo > 0.0).any() || (hi < 0.0).any(), enter > leave};
 }
 
 /// One ray through the tree: 0/1 parity, 2 on the boundary, -1 degenerate.
@@ -178,9 +192,9 @@ int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionSta
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(stack.back())];
     const bool root = stack.back() == 0;
     stack.pop_back();
-    const BallTest bound = test_ball(node.bound, s);
+    const VolumeTest box = test_box(node.box, s);
+    if (!root && box.segment_misses) continue;  // the faces lie in the box; x is not on them
     if (node.leaf()) {
-      if (bound.segment_misses) continue;  // x is not on the face either
       const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
       ++count.crossing_tests;
       const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), s.x, s.q));
@@ -188,20 +202,18 @@ int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionSta
       continue;
     }
     ++count.flintstone_tests;
-    // The localizing volume is F(P) ∩ bound; when F(P) is a union only the
-    // bound is used (the faces and the fan need not lie in a union of balls).
-    // A segment that misses the volume misses the node's faces; x then lies
-    // outside the volume as well.
-    bool outside = bound.x_outside;
-    if (!root) {
-      if (bound.segment_misses) continue;
-      if (!node.stone.is_union) {
-        const BallTest first = test_ball(node.stone.first, s);
-        if (first.segment_misses) continue;
-        const BallTest second = test_ball(node.stone.second, s);
-        if (second.segment_misses) continue;
-        outside = outside || first.x_outside || second.x_outside;
-      }
+    // The localizing volume is F(P) ∩ box; when F(P) is a union only the box
+    // is used (the faces and the fan need not lie in a union of balls). A
+    // segment that misses the volume misses the node's faces, and x then lies
+    // outside the volume as well. (The node's bound ball adds nothing here
+    // once the box is tested: measured, it prunes < 1% of the visits.)
+    bool outside = box.x_outside;
+    if (!root && !node.stone.is_union) {
+      const VolumeTest first = test_ball(node.stone.first, s);
+      if (first.segment_misses) continue;
+      const VolumeTest second = test_ball(node.stone.second, s);
+      if (second.segment_misses) continue;
+      outside = outside || first.x_outside || second.x_outside;
     }
     if (root || !outside || node.boundary_count > fan_limit) {
       for (int c = 0; c < node.child_count; ++c) stack.push_back(node.first_child + c);
