@@ -31,8 +31,7 @@ class LibusbUmockdev : public testing::Test {
  protected:
   void SetUp() override {
     if (!test::umockdev_preloaded())
-      GTEST_SKIP() << "libumockdev-preload.so is not loaded: run this binary through umockdev-wrapper "
-                      "(ctest does); install Debian's umockdev package";
+      GTEST_SKIP() << test::kNotPreloaded;
     bus_ = std::make_unique<UmockdevUsbBus>();
   }
   sim::VirtualClock clock_;

@@ -5,12 +5,10 @@
 #include <cerrno>
 #include <cstddef>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <libusb.h>
 #include <linux/usbdevice_fs.h>
 #include <sys/ioctl.h>
-#include <stdexcept>
 #include <umockdev.h>
 
 namespace scanstation::test {
@@ -84,13 +82,6 @@ int urb_status(int libusb_code) {
 }
 
 }  // namespace
-
-bool umockdev_preloaded() {
-  // What umockdev itself checks (umockdev_in_mock_environment() instead tells
-  // whether a testbed exists).
-  const char* preload = std::getenv("LD_PRELOAD");
-  return preload && std::strstr(preload, "libumockdev-preload");
-}
 
 EmulatedUsbDevice::EmulatedUsbDevice(sim::SimUsbBoard& board, std::string devnode, std::string serial,
                                      UsbNodeBehaviour behaviour)
@@ -256,13 +247,10 @@ int EmulatedUsbDevice::control(unsigned char* buffer, int length, int* actual) {
   }
 }
 
-UmockdevUsbBus::UmockdevUsbBus() : testbed_(umockdev_testbed_new()) {}
+UmockdevUsbBus::UmockdevUsbBus() = default;
 
 UmockdevUsbBus::~UmockdevUsbBus() {
-  for (Slot& slot : slots_) {
-    if (slot.device) umockdev_testbed_detach_ioctl(testbed_, slot.device->devnode().c_str(), nullptr);
-  }
-  g_object_unref(testbed_);
+  for (Slot& slot : slots_) testbed_.detach(slot.device->devnode());
 }
 
 EmulatedUsbDevice& UmockdevUsbBus::plug(sim::SimUsbBoard& board, const std::string& serial, int address,
@@ -282,19 +270,10 @@ EmulatedUsbDevice& UmockdevUsbBus::plug(sim::SimUsbBoard& board, const std::stri
                              "\nA: bConfigurationValue=1\nA: bNumConfigurations=1\nA: manufacturer=" + kManufacturer +
                              "\nA: product=" + kProduct + "\nA: serial=" + serial +
                              "\nH: descriptors=" + hex(descriptors()) + "\n";
-  GError* error = nullptr;
-  if (!umockdev_testbed_add_from_string(testbed_, record.c_str(), &error)) {
-    const std::string what = error ? error->message : "?";
-    g_clear_error(&error);
-    throw std::runtime_error("umockdev cannot add the board: " + what);
-  }
+  testbed_.add(record);
   auto device = std::make_unique<EmulatedUsbDevice>(board, devnode, serial, behaviour);
-  if (!umockdev_testbed_attach_ioctl(testbed_, devnode, device->handler(), &error)) {
-    const std::string what = error ? error->message : "?";
-    g_clear_error(&error);
-    throw std::runtime_error("umockdev cannot attach the usbfs handler: " + what);
-  }
-  umockdev_testbed_uevent(testbed_, (std::string("/sys") + syspath).c_str(), "add");
+  testbed_.attach(devnode, device->handler());
+  testbed_.uevent(std::string("/sys") + syspath, "add");
   slots_.push_back({std::string("/sys") + syspath, std::move(device)});
   return *slots_.back().device;
 }
@@ -303,8 +282,8 @@ void UmockdevUsbBus::unplug(EmulatedUsbDevice& device) {
   for (Slot& slot : slots_) {
     if (slot.device.get() != &device) continue;
     device.disconnect();
-    umockdev_testbed_uevent(testbed_, slot.syspath.c_str(), "remove");
-    umockdev_testbed_remove_device(testbed_, slot.syspath.c_str());
+    testbed_.uevent(slot.syspath, "remove");
+    testbed_.remove(slot.syspath);
     return;
   }
 }

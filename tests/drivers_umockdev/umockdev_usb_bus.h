@@ -14,6 +14,7 @@
 #pragma once
 
 #include "sim/devices/sim_usb_board.h"
+#include "umockdev_testbed.h"
 
 #include <cstdint>
 #include <deque>
@@ -22,8 +23,6 @@
 #include <string>
 #include <vector>
 
-typedef struct _UMockdevTestbed UMockdevTestbed;
-typedef struct _UMockdevIoctlBase UMockdevIoctlBase;
 typedef struct _UMockdevIoctlClient UMockdevIoctlClient;
 typedef struct _UMockdevIoctlData UMockdevIoctlData;
 
@@ -77,7 +76,7 @@ class EmulatedUsbDevice {
   std::vector<std::string> log_;
 };
 
-/// The testbed: a private sysfs/udev/dev tree for this process.
+/// Bus 1 of the testbed's emulated USB.
 class UmockdevUsbBus {
  public:
   UmockdevUsbBus();
@@ -97,11 +96,8 @@ class UmockdevUsbBus {
     std::string syspath;
     std::unique_ptr<EmulatedUsbDevice> device;
   };
-  UMockdevTestbed* testbed_ = nullptr;
+  UmockdevTestbed testbed_;
   std::vector<Slot> slots_;
 };
-
-/// True when libumockdev-preload.so is loaded (the test runs under umockdev-wrapper).
-bool umockdev_preloaded();
 
 }  // namespace scanstation::test
