@@ -6,19 +6,9 @@
 #include "drivers/trapezoid_ramp.h"
 
 #include <cmath>
-#include <cstdio>
+#include <spdlog/fmt/fmt.h>
 
 namespace scanstation::drivers {
-
-namespace {
-
-std::string degrees_text(double degrees) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f°", degrees);
-  return text;
-}
-
-}  // namespace
 
 void StepperConfig::validate() const {
   auto require = [](bool ok, const char* field, const char* expected) {
@@ -135,8 +125,9 @@ Timestamp StepperTurntable::home() {
     prepare(true);
     for (std::int64_t i = 0; lines_.home->value(); ++i) {
       if (i == limit)
-        throw DeviceError("home switch " + lines_.home->describe() + " stays active over " + degrees_text(travel_deg) +
-                          " of travel: stuck closed or wired to the wrong line");
+        throw DeviceError(fmt::format("home switch {} stays active over {:.1f}° of travel: stuck closed or wired to "
+                                      "the wrong line",
+                                      lines_.home->describe(), travel_deg));
       pulse(clock_.now() + period);
       ++position_;
     }
@@ -151,9 +142,9 @@ Timestamp StepperTurntable::home() {
       return clock_.now() + config_.settle;
     }
   }
-  throw DeviceError("home switch " + lines_.home->describe() + " did not become active within " +
-                    degrees_text(travel_deg) + " (" + std::to_string(limit) +
-                    " steps) of backwards travel: check the switch and its wiring");
+  throw DeviceError(fmt::format("home switch {} did not become active within {:.1f}° ({} steps) of backwards travel: "
+                                "check the switch and its wiring",
+                                lines_.home->describe(), travel_deg, limit));
 }
 
 std::string StepperTurntable::describe() const {
