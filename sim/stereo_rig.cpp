@@ -1,6 +1,7 @@
 #include "sim/stereo_rig.h"
 
 #include "core/errors.h"
+#include "sim/turntable_rig.h"
 
 #include <cmath>
 
@@ -9,13 +10,11 @@ namespace scanstation::sim {
 StereoRig stereo_rig(double object_height, double platter_radius, int width, int height, double baseline) {
   if (!(object_height > 0) || !(platter_radius > 0) || !(baseline > 0) || width <= 0 || height <= 0)
     throw InvalidInput("stereo rig: object height, platter radius, baseline and image size must be positive");
-  // The turntable rig's view (sim/turntable_rig.cpp), a little closer: stereo
-  // depth resolution falls with the square of the distance.
-  const double distance = 3.0 * std::max(object_height, platter_radius);
-  const Point3 target{0, 0, 0.5 * object_height};
-  const Point3 eye{0, -distance, 0.5 * object_height + 0.35 * distance};
-  const double half_extent = 1.1 * std::max(platter_radius, 0.75 * object_height);
-  const double fov = 2.0 * std::atan(half_extent / distance);
+  // The turntable rig's view, a little closer: stereo depth resolution falls
+  // with the square of the distance.
+  const RigViewpoint view = rig_viewpoint(object_height, platter_radius, 3.0, 1.1);
+  const double distance = view.distance, fov = view.fov;
+  const Point3 &eye = view.eye, &target = view.target;
   const Eigen::Vector3d side = 0.5 * baseline * distance * Eigen::Vector3d::UnitX();
   StereoRig rig;
   rig.left = PinholeCamera::look_at(eye - side, target, Eigen::Vector3d::UnitZ(), width, height, fov);

@@ -45,8 +45,7 @@ nlohmann::json rate_json(const acquisition::BadPixelRate& r) {
 // on the platter).
 TriangleMesh builtin_object(const std::string& name) {
   if (name == "sphere") {
-    TriangleMesh sphere = sim::icosphere(6);
-    sphere.vertices.positions *= 30.0;
+    TriangleMesh sphere = sim::ellipsoid(Eigen::Vector3d::Constant(30.0), 6);
     sphere.vertices.positions.rowwise() += Eigen::RowVector3d(6.0, -4.0, 30.0);
     return sphere;
   }

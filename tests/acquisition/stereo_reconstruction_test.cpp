@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <numbers>
+#include <tuple>
 
 namespace scanstation::acquisition {
 namespace {
@@ -91,26 +92,22 @@ TEST(StereoReconstruction, RectificationAndDisparityRangeCoverTheWorkingVolume) 
     const double d = l[0] / l[2] - rr[0] / rr[2];
     EXPECT_GE(d, 4.0);  // the margin
     EXPECT_LT(d, range.num_disparities - 4.0);
-    // The rectification maps send the rectified projection back to the
-    // camera's own (distorted) pixel.
+    // The rectification maps send the rectified projection back to each
+    // camera's own (distorted) pixel, on the same row of both views.
     const cv::Point2f at(static_cast<float>(l[0] / l[2]), static_cast<float>(l[1] / l[2]));
-    if (at.x < 1 || at.y < 1 || at.x > 318 || at.y > 238) continue;
-    cv::Mat x, y;
-    cv::getRectSubPix(station.left_map_x, {1, 1}, at, x);
-    cv::getRectSubPix(station.left_map_y, {1, 1}, at, y);
-    const auto pixel = rig.left.project(p);
-    ASSERT_TRUE(pixel);
-    EXPECT_NEAR(x.at<float>(0, 0), pixel->x(), 0.01);
-    EXPECT_NEAR(y.at<float>(0, 0), pixel->y(), 0.01);
-    // The same row in the right view, d pixels to the left.
     const cv::Point2f in_right(at.x - static_cast<float>(d), at.y);
-    if (in_right.x < 1) continue;
-    cv::getRectSubPix(station.right_map_x, {1, 1}, in_right, x);
-    cv::getRectSubPix(station.right_map_y, {1, 1}, in_right, y);
-    const auto right_pixel = rig.right.project(p);
-    ASSERT_TRUE(right_pixel);
-    EXPECT_NEAR(x.at<float>(0, 0), right_pixel->x(), 0.01);
-    EXPECT_NEAR(y.at<float>(0, 0), right_pixel->y(), 0.01);
+    if (in_right.x < 1 || at.y < 1 || at.x > 318 || at.y > 238) continue;
+    for (const auto& [camera, rectified, map_x, map_y] :
+         {std::tuple{&rig.left, at, station.left_map_x, station.left_map_y},
+          std::tuple{&rig.right, in_right, station.right_map_x, station.right_map_y}}) {
+      cv::Mat x, y;
+      cv::getRectSubPix(map_x, {1, 1}, rectified, x);
+      cv::getRectSubPix(map_y, {1, 1}, rectified, y);
+      const auto pixel = camera->project(p);
+      ASSERT_TRUE(pixel);
+      EXPECT_NEAR(x.at<float>(0, 0), pixel->x(), 0.01);
+      EXPECT_NEAR(y.at<float>(0, 0), pixel->y(), 0.01);
+    }
     ++inside;
   }
   EXPECT_GT(inside, 300);
@@ -166,8 +163,7 @@ double rms_distance(const Eigen::MatrixX3d& P, Distance distance) {
 TEST(StereoReconstruction, FusedViewsOfTextureLessObjectsMatchTheirSurfaces) {
   constexpr double radius = 30.0;
   const Eigen::Vector3d centre{6.0, -4.0, radius};
-  TriangleMesh sphere = sim::icosphere(6);
-  sphere.vertices.positions *= radius;
+  TriangleMesh sphere = sim::ellipsoid(Eigen::Vector3d::Constant(radius), 6);
   sphere.vertices.positions.rowwise() += centre.transpose();
   // A ring standing on its edge, off the axis: a hole, self-occlusion, and no
   // symmetry about the turntable axis, so a wrong rotation would show.

@@ -7,10 +7,7 @@
 namespace scanstation {
 namespace {
 
-using test::Outcome;
-using test::ScratchFolder;
-using test::scanstation;
-using test::slurp;
+using namespace test;
 
 std::string path(const std::filesystem::path& p) { return p.string(); }
 
