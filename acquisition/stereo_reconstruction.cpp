@@ -89,16 +89,24 @@ StereoStation stereo_station(const PinholeCamera& left, const PinholeCamera& rig
   return stereo_station(std::move(c), left.rotation, left.translation);
 }
 
-std::pair<cv::Mat, cv::Mat> rectify_pair(const StereoStation& station, const cv::Mat& left, const cv::Mat& right) {
+namespace {
+
+cv::Mat rectify(const StereoStation& station, const cv::Mat& frame, bool left) {
   const cv::Size size = station.calibration.image_size;
-  if (left.size() != size || right.size() != size)
-    throw InvalidInput("stereo: the frames are " + std::to_string(left.cols) + "x" + std::to_string(left.rows) + " and " +
-                       std::to_string(right.cols) + "x" + std::to_string(right.rows) + ", the calibration's images " +
-                       std::to_string(size.width) + "x" + std::to_string(size.height));
-  std::pair<cv::Mat, cv::Mat> rectified;
-  cv::remap(left, rectified.first, station.left_map_x, station.left_map_y, cv::INTER_LINEAR);
-  cv::remap(right, rectified.second, station.right_map_x, station.right_map_y, cv::INTER_LINEAR);
+  if (frame.size() != size)
+    throw InvalidInput("stereo: a " + std::string(left ? "left" : "right") + " frame is " + std::to_string(frame.cols) +
+                       "x" + std::to_string(frame.rows) + ", the calibration's images " + std::to_string(size.width) +
+                       "x" + std::to_string(size.height));
+  cv::Mat rectified;
+  cv::remap(frame, rectified, left ? station.left_map_x : station.right_map_x,
+            left ? station.left_map_y : station.right_map_y, cv::INTER_LINEAR);
   return rectified;
+}
+
+}  // namespace
+
+std::pair<cv::Mat, cv::Mat> rectify_pair(const StereoStation& station, const cv::Mat& left, const cv::Mat& right) {
+  return {rectify(station, left, true), rectify(station, right, false)};
 }
 
 StereoOptions fit_disparity_range(StereoStation& station, double radius, double height, StereoOptions base,
@@ -145,11 +153,14 @@ StereoOptions reconstruction_matcher_options() {
 }
 
 void disparity_to_points(const StereoStation& station, const cv::Mat& disparity, const cv::Mat& rectified_left,
-                         double turntable_angle, LaserScanPoints& points, const StereoReconstructionOptions& options) {
-  if (disparity.type() != CV_32F || disparity.size() != rectified_left.size())
-    throw InvalidInput("stereo: the disparity map must be CV_32F of the rectified left frame's size");
-  if (rectified_left.depth() != CV_8U || (rectified_left.channels() != 1 && rectified_left.channels() != 3))
-    throw InvalidInput("stereo: the rectified left frame must be 8-bit grey or BGR");
+                         double turntable_angle, LaserScanPoints& points, const StereoReconstructionOptions& options,
+                         const cv::Mat& rectified_colour) {
+  const cv::Mat& colour = rectified_colour.empty() ? rectified_left : rectified_colour;
+  if (disparity.type() != CV_32F || disparity.size() != rectified_left.size() || colour.size() != rectified_left.size())
+    throw InvalidInput("stereo: the disparity map must be CV_32F of the rectified left frame's size, and so the colour frame");
+  for (const cv::Mat* frame : {&rectified_left, &colour})
+    if (frame->depth() != CV_8U || (frame->channels() != 1 && frame->channels() != 3))
+      throw InvalidInput("stereo: the rectified left and colour frames must be 8-bit grey or BGR");
   const cv::Matx44d Q = station.calibration.q;
   // Rectified left camera → object frame: r1ᵀ, then the camera pose, then −angle.
   const Eigen::Matrix3d to_object = turntable_rotation(turntable_angle).transpose() *
@@ -179,11 +190,11 @@ void disparity_to_points(const StereoStation& station, const cv::Mat& disparity,
           p.head<2>().norm() > options.maximum_radius)
         continue;
       found.push_back(p);
-      if (rectified_left.channels() == 1) {
-        const std::uint8_t g = rectified_left.at<std::uint8_t>(y, x);
+      if (colour.channels() == 1) {
+        const std::uint8_t g = colour.at<std::uint8_t>(y, x);
         colours.push_back({g, g, g});
       } else {
-        const cv::Vec3b bgr = rectified_left.at<cv::Vec3b>(y, x);
+        const cv::Vec3b bgr = colour.at<cv::Vec3b>(y, x);
         colours.push_back({bgr[2], bgr[1], bgr[0]});
       }
       const double smooth = options.discontinuity > 0 ? std::exp(-std::pow(range / options.discontinuity, 2)) : 1.0;
@@ -204,11 +215,14 @@ void disparity_to_points(const StereoStation& station, const cv::Mat& disparity,
 }
 
 LaserScanPoints stereo_view_points(const StereoStation& station, const cv::Mat& left, const cv::Mat& right,
-                                   double turntable_angle, const StereoReconstructionOptions& options) {
+                                   double turntable_angle, const StereoReconstructionOptions& options,
+                                   const cv::Mat& colour) {
   const auto [rectified_left, rectified_right] = rectify_pair(station, left, right);
   const cv::Mat disparity = compute_disparity(rectified_left, rectified_right, options.matcher);
+  cv::Mat rectified_colour;
+  if (!colour.empty()) rectified_colour = rectify(station, colour, true);
   LaserScanPoints points;
-  disparity_to_points(station, disparity, rectified_left, turntable_angle, points, options);
+  disparity_to_points(station, disparity, rectified_left, turntable_angle, points, options, rectified_colour);
   return points;
 }
 

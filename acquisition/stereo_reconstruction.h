@@ -95,18 +95,24 @@ struct StereoReconstructionOptions {
 /// by r1ᵀ into the left camera, by the left camera pose into the station and
 /// by the turntable angle into the object frame.
 /// rectified_left   the rectified left frame (8-bit grey or BGR, same size):
-///                  the colour of each point and the texture of its block
+///                  the texture of each point's block, and its colour
+/// rectified_colour  if not empty, the colours come from this rectified left
+///                  frame instead (e.g. taken with the projector off)
 /// confidence       in (0, 1]: texture (g / (g + texture_scale), g the mean
 ///                  horizontal gradient over the block) times smoothness
 ///                  (exp(−(range / discontinuity)²), range the disparity span
 ///                  of the 3 × 3 neighbourhood)
 /// Points are added to `points` in row-major pixel order.
 void disparity_to_points(const StereoStation& station, const cv::Mat& disparity, const cv::Mat& rectified_left,
-                         double turntable_angle, LaserScanPoints& points, const StereoReconstructionOptions& options = {});
+                         double turntable_angle, LaserScanPoints& points, const StereoReconstructionOptions& options = {},
+                         const cv::Mat& rectified_colour = {});
 
 /// One stereo view → points in the object frame: rectify_pair,
-/// compute_disparity, disparity_to_points. `left` gives the colours.
+/// compute_disparity, disparity_to_points. The colours come from `colour`, a
+/// left-camera frame without the projector's dots (8-bit grey or BGR), or
+/// from `left` when it is empty.
 LaserScanPoints stereo_view_points(const StereoStation& station, const cv::Mat& left, const cv::Mat& right,
-                                   double turntable_angle, const StereoReconstructionOptions& options = {});
+                                   double turntable_angle, const StereoReconstructionOptions& options = {},
+                                   const cv::Mat& colour = {});
 
 }  // namespace scanstation::acquisition

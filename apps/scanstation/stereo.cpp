@@ -181,9 +181,12 @@ class StereoCommand final : public Command {
     for (int v = 0; v < views_; ++v) {
       const double angle = 2.0 * std::numbers::pi * v / views_;
       const std::uint64_t seed = seed_ + 2 * static_cast<std::uint64_t>(v);
-      const cv::Mat left = renderer.expose(renderer.cast(rig.left, angle), {}, seed);
+      const sim::RenderedView left_view = renderer.cast(rig.left, angle);
+      const cv::Mat left = renderer.expose(left_view, {}, seed);
       const cv::Mat right = renderer.expose(renderer.cast(rig.right, angle), {}, seed + 1);
-      views.push_back(acquisition::stereo_view_points(station, left, right, angle, options));
+      // The colours from a frame without the dots, as a real rig would take.
+      const cv::Mat plain = renderer.expose(left_view, {}, seed, {}, false);
+      views.push_back(acquisition::stereo_view_points(station, left, right, angle, options, plain));
       per_view.push_back({{"angle", angle}, {"points", views.back().cloud.size()}});
       if (progress) progress(static_cast<double>(v + 1) / views_);
     }

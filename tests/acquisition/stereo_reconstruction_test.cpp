@@ -222,6 +222,25 @@ TEST(StereoReconstruction, TheDotProjectorGivesTextureLessObjectsPoints) {
   EXPECT_GT(on, 5 * off);
 }
 
+TEST(StereoReconstruction, ColoursFromAFrameWithoutTheDots) {
+  const sim::StereoRig rig = sim::stereo_rig(60.0, platter_radius, 160, 120);
+  const StereoStation station = stereo_station(rig.left, rig.right);
+  cv::Mat disparity(120, 160, CV_32F, cv::Scalar(40.0f));
+  cv::Mat texture(120, 160, CV_8U);
+  cv::randu(texture, 0, 255);
+  const cv::Mat colour(120, 160, CV_8UC3, cv::Scalar(10, 20, 30));  // BGR
+  StereoReconstructionOptions options;
+  options.minimum_height = -std::numeric_limits<double>::infinity();
+  LaserScanPoints points;
+  disparity_to_points(station, disparity, texture, 0.0, points, options, colour);
+  ASSERT_GT(points.cloud.size(), 1000);
+  EXPECT_EQ(points.cloud.colors.col(0).cast<int>().minCoeff(), 30);  // RGB
+  EXPECT_EQ(points.cloud.colors.col(2).cast<int>().maxCoeff(), 10);
+  test::expect_error<InvalidInput>(
+      [&] { disparity_to_points(station, disparity, texture, 0.0, points, options, colour(cv::Rect(0, 0, 9, 9))); },
+      {"colour frame"});
+}
+
 TEST(ViewFusion, MergesAgreeingViewsAndDropsWhatOnlyOneViewSaw) {
   // Two views of the same 10 × 10 grid of points (jittered well inside their
   // cubes), the second with a stray point of its own.
