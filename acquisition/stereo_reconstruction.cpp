@@ -136,10 +136,15 @@ StereoOptions fit_disparity_range(StereoStation& station, double radius, double 
   // points do not change.
   const double shift = lowest - margin;
   P2(0, 2) += shift;
-  c.p2 = cv::Mat(P2);
+  // New matrices and maps throughout: a copied station shares them (cv::Mat).
+  c.p2 = cv::Mat(P2).clone();
+  c.q = c.q.clone();
   c.q.at<double>(3, 3) = (P1(0, 2) - P2(0, 2)) / (P2(0, 3) / P2(0, 0));
+  cv::Mat map_x, map_y;
   cv::initUndistortRectifyMap(cv::Mat(c.right.camera_matrix), c.right.distortion, c.r2, c.p2, c.image_size, CV_32FC1,
-                              station.right_map_x, station.right_map_y);
+                              map_x, map_y);
+  station.right_map_x = map_x;
+  station.right_map_y = map_y;
   base.min_disparity = 0;
   base.num_disparities = 16 * static_cast<int>(std::ceil((highest - shift + margin) / 16.0));
   return base;

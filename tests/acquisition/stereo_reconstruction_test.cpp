@@ -76,10 +76,14 @@ TEST(StereoReconstruction, DisparityReprojectsToThePointsInTheObjectFrame) {
 // the rectified rows agree (the epipolar lines are rows).
 TEST(StereoReconstruction, RectificationAndDisparityRangeCoverTheWorkingVolume) {
   const sim::StereoRig rig = sim::stereo_rig(60.0, platter_radius, 320, 240);
-  StereoStation station = stereo_station(rig.left, rig.right);
+  const StereoStation unfitted = stereo_station(rig.left, rig.right);
+  StereoStation station = unfitted;
   const StereoOptions range = fit_disparity_range(station, platter_radius, 60.0);
   EXPECT_EQ(range.num_disparities % 16, 0);
   EXPECT_EQ(range.min_disparity, 0);
+  // The copy it started from is untouched (cv::Mat shares its data).
+  EXPECT_NE(unfitted.calibration.q.at<double>(3, 3), station.calibration.q.at<double>(3, 3));
+  EXPECT_GT(cv::norm(unfitted.right_map_x, station.right_map_x, cv::NORM_INF), 1.0);
   const cv::Matx34d P1 = station.calibration.p1, P2 = station.calibration.p2;
   sim::Random random(3);
   int inside = 0;
