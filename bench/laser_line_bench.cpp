@@ -46,10 +46,7 @@ void SubtractReference(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void Extract(benchmark::State& state) {
-  const Pair& pair = frame_pair();
-  acquisition::LaserLineOptions options;
-  options.fit = static_cast<acquisition::PeakFit>(state.range(0));
+void extract_repeatedly(benchmark::State& state, const Pair& pair, const acquisition::LaserLineOptions& options) {
   std::size_t peaks = 0;
   for (auto _ : state) {
     const acquisition::LaserLine line = acquisition::extract_laser_line(pair.on, pair.off, options);
@@ -58,6 +55,12 @@ void Extract(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["peaks"] = static_cast<double>(peaks);
+}
+
+void Extract(benchmark::State& state) {
+  acquisition::LaserLineOptions options;
+  options.fit = static_cast<acquisition::PeakFit>(state.range(0));
+  extract_repeatedly(state, frame_pair(), options);
 }
 
 // The same pair turned a quarter (a horizontal stripe), searched per column:
@@ -72,14 +75,7 @@ void ExtractColumns(benchmark::State& state) {
   cv::setNumThreads(1);
   acquisition::LaserLineOptions options;
   options.stripe = acquisition::StripeDirection::horizontal;
-  std::size_t peaks = 0;
-  for (auto _ : state) {
-    const acquisition::LaserLine line = acquisition::extract_laser_line(turned.on, turned.off, options);
-    peaks = line.peaks.size();
-    benchmark::DoNotOptimize(line.peaks.data());
-  }
-  state.SetItemsProcessed(state.iterations());
-  state.counters["peaks"] = static_cast<double>(peaks);
+  extract_repeatedly(state, turned, options);
 }
 
 BENCHMARK(SubtractReference)->Unit(benchmark::kMicrosecond);
