@@ -119,7 +119,12 @@ cv::Mat SceneFrameSource::render(const Exposure& exposure) {
     throw InvalidInput("simulated scene: the camera model is " + std::to_string(camera_.width) + "x" +
                        std::to_string(camera_.height) + " but the camera streams " +
                        std::to_string(exposure.size.width) + "x" + std::to_string(exposure.size.height));
-  const double angle = actuators_.angle(exposure.start);
+  double angle = actuators_.angle(exposure.start);
+  // A frame exposed while the table turns is smeared over the move; it is
+  // rendered at the pose last cast (a stale pose, as the gate expects),
+  // sparing a ray cast for each frame the gate discards.
+  const auto& last = cache_[(next_slot_ + cache_.size() - 1) % cache_.size()];
+  if (last && actuators_.angle(exposure.end) != angle) angle = last->first;
   const std::vector<int> lit = actuators_.lasers(exposure.start, exposure.end);
   std::uint64_t seed = mix(seed_, std::bit_cast<std::uint64_t>(angle));
   for (const int laser : lit) seed = mix(seed, static_cast<std::uint64_t>(laser) + 1);

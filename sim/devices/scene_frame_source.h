@@ -37,7 +37,9 @@ struct VirtualActuators {
 VirtualActuators virtual_actuators(const OpenStation& station, const drivers::StationDescription& description);
 
 /// Renders `renderer`'s scene through `camera` (whose size must be the
-/// frame size) in the actuators' state at each exposure. The sensor noise is
+/// frame size) in the actuators' state at each exposure; a frame exposed
+/// while the table turns shows the pose last rendered (motion blur is not
+/// simulated, and such frames are never accepted by the frame gate). The sensor noise is
 /// seeded by the state (microstep position and lasers), not by the frame's
 /// sequence number, so a resumed or repeated scan sees the very same frames.
 /// Irradiance is the 8-bit exposure / 255: at the reference exposure (10 ms,
@@ -56,8 +58,7 @@ class SceneFrameSource final : public FrameSource {
   VirtualActuators actuators_;
   SensorModel sensor_;
   std::uint64_t seed_;
-  // The last two cast views: stale frames of the previous pose and the frames
-  // of the new one alternate while a gate discards the former.
+  // The last two cast views (slot next_slot_ − 1 is the newest).
   std::array<std::optional<std::pair<double, RenderedView>>, 2> cache_;
   std::size_t next_slot_ = 0;
 };
