@@ -78,15 +78,16 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   for (std::size_t s = 0; s < session.steps.size(); ++s) {
     const SessionStep& step = session.steps[s];
     result.capture_seconds += step.seconds;
+    std::vector<LaserScanPoints> clouds;
     if (const auto frames = load_step(session, step, lasers, result.problems)) {
-      const std::vector<LaserScanPoints> clouds = step_points(*frames, geometry, result.parameters);
+      clouds = step_points(*frames, geometry, result.parameters);
       for (std::size_t l = 0; l < clouds.size(); ++l) {
         append_points(result.points, clouds[l]);
         append_points(result.by_laser[l], clouds[l]);
       }
       ++result.steps_used;
     }
-    if (options.on_step) options.on_step(step.step, step.angle_deg, result.points.cloud.size());
+    if (options.on_step) options.on_step(step.step, step.angle_deg, clouds, result.points.cloud.size());
     if (options.progress) options.progress(double(s + 1) / double(session.steps.size()));
   }
   if (result.parameters.outlier_radius > 0)

@@ -15,12 +15,18 @@ namespace scanstation::acquisition {
 
 /// parameters  replaces the recorded processing parameters
 /// geometry    replaces the recorded geometry (another calibration, on purpose)
-/// on_step     called after each step with its index, angle and the points so far
+/// on_step     called after each recorded step with its index, angle, its
+///             points (one cloud per laser, platter object frame; empty when
+///             its frames are unusable) and the number of points so far —
+///             a replay feeds a live view or an incremental reconstruction
+///             batch by batch, as the scan does
 struct ReplayOptions {
   std::optional<LaserScanParameters> parameters;
   std::optional<TurntableGeometry> geometry;
   ProgressCallback progress;
-  std::function<void(int step, double angle_deg, Eigen::Index points)> on_step;
+  std::function<void(int step, double angle_deg, const std::vector<LaserScanPoints>& step_points,
+                     Eigen::Index points_so_far)>
+      on_step;
 };
 
 /// points            the scan in the object's own coordinates (the mesh file's

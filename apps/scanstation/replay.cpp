@@ -26,7 +26,8 @@ class ReplayCommand final : public Command {
     acquisition::ReplayOptions options;
     if (parameters_.any()) options.parameters = parameters_.apply(contents.manifest.parameters);
     options.progress = context.progress.stage("replay");
-    options.on_step = [&](int step, double angle, Eigen::Index points) {
+    options.on_step = [&](int step, double angle, const std::vector<acquisition::LaserScanPoints>&,
+                          Eigen::Index points) {
       context.progress.detail(std::to_string(points) + " points");
       context.progress.event("step", {{"step", step}, {"angle_deg", angle}, {"points", points}});
     };

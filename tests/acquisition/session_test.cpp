@@ -20,8 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-drivers::StationDescription small_station() {
+drivers::StationDescription small_station(drivers::PixelFormat format = drivers::PixelFormat::grey) {
   drivers::StationDescription d;
+  d.camera.format.format = format;
   d.camera.format.size = {320, 240};
   d.lasers = {drivers::LaserRole{}, drivers::LaserRole{}};
   return d;
@@ -29,12 +30,13 @@ drivers::StationDescription small_station() {
 
 // A simulated station for `object`, opened as the scan command does.
 struct SimStation {
-  drivers::StationDescription description = small_station();
+  drivers::StationDescription description;
   sim::SimulatedTurntable simulated;
   std::unique_ptr<sim::OpenStation> station;
 
-  explicit SimStation(const std::string& object)
-      : simulated(sim::simulated_turntable(sim::scan_object(object), description)),
+  explicit SimStation(const std::string& object, drivers::PixelFormat format = drivers::PixelFormat::grey)
+      : description(small_station(format)),
+        simulated(sim::simulated_turntable(sim::scan_object(object), description)),
         station(sim::open_station(description, sim::camera_role | sim::laser_role | sim::turntable_role,
                                   simulated.frames)) {}
 
@@ -59,8 +61,9 @@ struct SimStation {
 
 // Records `steps` steps of `object` into `folder` (stopping after
 // `stop_after` when > 0), then processes the session into its points.ply.
-RecordingOutcome scan(const fs::path& folder, const std::string& object, int steps, int stop_after = 0) {
-  SimStation sim(object);
+RecordingOutcome scan(const fs::path& folder, const std::string& object, int steps, int stop_after = 0,
+                      drivers::PixelFormat format = drivers::PixelFormat::grey) {
+  SimStation sim(object, format);
   SessionRecorder recorder = SessionRecorder::create(folder, sim.manifest(steps), io::Overwrite::refuse);
   auto devices = sim.devices();
   return record_turntable_session(devices, recorder, {}, stop_after);
@@ -294,6 +297,14 @@ TEST_F(RecordedSphere, ResumedScanGivesTheSamePointsAsAnUninterruptedOne) {
   process(interrupted, interrupted);
   EXPECT_EQ(bytes(interrupted / "points.ply"), bytes(session() / "points.ply"));
   EXPECT_TRUE(read_session(interrupted).problems.empty());
+}
+
+TEST_F(RecordedSphere, SixteenBitFramesAreKeptAndGiveTheSamePoints) {
+  test::ScratchFolder scratch;
+  ASSERT_TRUE(scan(scratch / "y16", "sphere", kSteps, 0, drivers::PixelFormat::y16).complete);
+  EXPECT_EQ(read_session_frame(scratch / "y16" / frame_file_name(0, 0)).type(), CV_16UC1);
+  process(scratch / "y16", scratch / "y16");
+  EXPECT_EQ(bytes(scratch / "y16" / "points.ply"), bytes(session() / "points.ply"));
 }
 
 TEST(Session, ChaliceScanWithinTheAccuracyBudget) {
