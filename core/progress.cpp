@@ -32,6 +32,7 @@ ProgressCallback ProgressReporter::stage(const std::string& name) {
   finish();
   if (mode_ == ProgressMode::none) return {};
   stage_ = name;
+  detail_.clear();
   open_ = true;
   last_fraction_ = -1.0;
   start_ = std::chrono::steady_clock::now();
@@ -57,14 +58,16 @@ void ProgressReporter::update(double fraction) {
 
 void ProgressReporter::draw(double fraction) {
   if (mode_ == ProgressMode::json) {
-    const nlohmann::json line = {{"event", "progress"}, {"stage", stage_}, {"fraction", fraction},
-                                 {"elapsed_s", elapsed()}};
+    nlohmann::json line = {{"event", "progress"}, {"stage", stage_}, {"fraction", fraction},
+                           {"elapsed_s", elapsed()}};
+    if (!detail_.empty()) line["detail"] = detail_;
     std::fprintf(stream_, "%s\n", line.dump().c_str());
   } else {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(fraction * kWidth);
-    std::fprintf(stream_, "\r%-16.16s [%s%s] %3d%% %6.1fs", stage_.c_str(), std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, ' ').c_str(), static_cast<int>(fraction * 100.0), elapsed());
+    std::fprintf(stream_, "\r%-16.16s [%s%s] %3d%% %6.1fs %s", stage_.c_str(), std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, ' ').c_str(), static_cast<int>(fraction * 100.0), elapsed(),
+                 detail_.c_str());
   }
   std::fflush(stream_);
 }

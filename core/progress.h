@@ -38,6 +38,10 @@ class ProgressReporter {
   /// Ends the current stage (draws 100 %, emits the closing JSON event).
   void finish();
 
+  /// A short note drawn after the bar of the current stage ("1234 points"),
+  /// and sent as "detail" in JSON progress lines; cleared by the next stage.
+  void detail(const std::string& text) { detail_ = text; }
+
   /// Emits a free-form event {"event": name, ...fields} (json mode only), for
   /// programs that follow the work live.
   void event(const std::string& name, const nlohmann::json& fields);
@@ -52,6 +56,7 @@ class ProgressReporter {
   ProgressMode mode_;
   std::FILE* stream_;
   std::string stage_;
+  std::string detail_;
   bool open_ = false;
   double last_fraction_ = -1.0;
   std::chrono::steady_clock::time_point start_;

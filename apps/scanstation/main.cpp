@@ -41,6 +41,8 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_capture_command(cli));
   commands.push_back(app::make_turntable_command(cli));
   commands.push_back(app::make_laser_command(cli));
+  commands.push_back(app::make_scan_command(cli));
+  commands.push_back(app::make_replay_command(cli));
 
   try {
     cli.parse(argc, argv);

@@ -50,13 +50,14 @@ drivers::UsbController& usb_board(OpenStation& station, const StationDescription
   return *station.usb;
 }
 
-void open_camera(OpenStation& station, const StationDescription& d) {
+void open_camera(OpenStation& station, const StationDescription& d, const FrameSourceFactory& sim_frames) {
   if (d.camera.backend == "v4l2") {
     station.camera = std::make_unique<drivers::V4l2Camera>(d.camera.device, drivers::linux_v4l2_system(), *station.clock);
   } else {
     SimCameraConfig config;
     config.frame_rate = d.camera.sim_frame_rate;
-    station.camera = std::make_unique<SimCamera>(std::make_unique<TestPattern>(), *station.clock, config);
+    station.camera = std::make_unique<SimCamera>(
+        sim_frames ? sim_frames(station) : std::make_unique<TestPattern>(), *station.clock, config);
   }
   const auto adjustment = station.camera->set_format(d.camera.format);
   if (adjustment.adjusted) station.notes.push_back("camera: " + adjustment.note);
@@ -148,7 +149,8 @@ GuardedStation::GuardedStation(const StationDescription& description, unsigned r
   guard_.add("station safe state", [this] { station_->make_safe(); });
 }
 
-std::unique_ptr<OpenStation> open_station(const StationDescription& d, unsigned roles) {
+std::unique_ptr<OpenStation> open_station(const StationDescription& d, unsigned roles,
+                                          const FrameSourceFactory& sim_frames) {
   auto station = std::make_unique<OpenStation>();
   if (simulated(d, roles)) {
     station->clock = std::make_unique<VirtualClock>();
@@ -157,7 +159,7 @@ std::unique_ptr<OpenStation> open_station(const StationDescription& d, unsigned 
   }
   if (roles & laser_role) open_lasers(*station, d);
   if (roles & turntable_role) open_turntable(*station, d);
-  if (roles & camera_role) open_camera(*station, d);
+  if (roles & camera_role) open_camera(*station, d, sim_frames);
   return station;
 }
 

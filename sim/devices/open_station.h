@@ -14,10 +14,12 @@
 #include "drivers/station_description.h"
 #include "drivers/turntable.h"
 #include "drivers/usb_controller.h"
+#include "sim/devices/frame_source.h"
 #include "sim/devices/sim_gpio_chip.h"
 #include "sim/devices/sim_stepper_motor.h"
 #include "sim/devices/sim_usb_board.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,9 +49,15 @@ struct OpenStation {
   void make_safe();
 };
 
+/// Makes what a simulated camera sees, once the lasers and the turntable are
+/// open (sim/devices/scene_frame_source.h renders the scene they move).
+using FrameSourceFactory = std::function<std::unique_ptr<FrameSource>(const OpenStation&)>;
+
 /// Opens the roles in `roles` (a StationRole mask). Throws DeviceError/DeviceGone
-/// naming the device when one is missing.
-std::unique_ptr<OpenStation> open_station(const drivers::StationDescription& description, unsigned roles);
+/// naming the device when one is missing. A simulated camera serves
+/// `sim_frames`' source, the test pattern without one.
+std::unique_ptr<OpenStation> open_station(const drivers::StationDescription& description, unsigned roles,
+                                          const FrameSourceFactory& sim_frames = {});
 
 /// open_station() under a SafeStateGuard installed before the first device is
 /// opened, so SIGINT/SIGTERM/SIGHUP at any moment — while lines are requested,

@@ -10,6 +10,7 @@
 #include "sim/shapes.h"
 #include "sim/surface_of_revolution.h"
 #include "sim/turntable_rig.h"
+#include "profile_distance.h"
 #include "test_support.h"
 
 #include <numbers>
@@ -55,17 +56,7 @@ double diagonal(const TriangleMesh& mesh) {
   return (mesh.vertices.positions.colwise().maxCoeff() - mesh.vertices.positions.colwise().minCoeff()).norm();
 }
 
-// Distance from (r, z) to a profile polyline: the distance to the surface of revolution.
-double profile_distance(const Eigen::MatrixX2d& profile, const Eigen::Vector3d& p) {
-  const Eigen::Vector2d q{p.head<2>().norm(), p.z()};
-  double best = std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i + 1 < profile.rows(); ++i) {
-    const Eigen::Vector2d a = profile.row(i), b = profile.row(i + 1);
-    const double t = std::clamp((q - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (q - a - t * (b - a)).norm());
-  }
-  return best;
-}
+using test::profile_distance;
 
 TEST(LaserScan, SphereWithinTheAccuracyBudgetAndItsKnownArtefactCheck) {
   constexpr double radius = 30.0;

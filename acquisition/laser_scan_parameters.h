@@ -1,0 +1,44 @@
+// The processing parameters of a turntable laser scan, as one object recorded
+// in a session's manifest and overridable at replay.
+#pragma once
+
+#include "acquisition/laser_line.h"
+#include "acquisition/laser_triangulation.h"
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace scanstation::acquisition {
+
+/// line            stripe extraction (laser_line.h)
+/// triangulation   ray–plane cut and platter/background rejection (laser_triangulation.h)
+/// outlier_radius  radius outlier removal over the whole cloud (outlier_removal.h),
+///                 in station units; 0 = off
+/// outlier_neighbours  neighbours a point needs within outlier_radius
+struct LaserScanParameters {
+  LaserLineOptions line;
+  LaserTriangulationOptions triangulation;
+  double outlier_radius = 0.0;
+  int outlier_neighbours = 2;
+};
+
+/// {"peak_fit": "gaussian"|"centre_of_mass"|"parabolic", "threshold_sigmas",
+///  "minimum_contrast", "minimum_width", "maximum_width", "saturation",
+///  "double_peak_ratio", "region": [x, y, w, h], "minimum_height",
+///  "maximum_radius" (null = none), "minimum_incidence", "outlier_radius",
+///  "outlier_neighbours"}
+nlohmann::json to_json(const LaserScanParameters& parameters);
+
+/// Reads what to_json wrote; a key that is absent keeps its value in `base`
+/// and is listed in `missing` (when given). A key of the wrong type or out of
+/// range throws InvalidInput naming `where` and the key.
+LaserScanParameters laser_scan_parameters_from_json(const nlohmann::json& value, const std::string& where,
+                                                    const LaserScanParameters& base = {},
+                                                    std::vector<std::string>* missing = nullptr);
+
+/// "gaussian", "centre_of_mass", "parabolic" and back (InvalidInput otherwise).
+std::string peak_fit_name(PeakFit fit);
+PeakFit parse_peak_fit(const std::string& name);
+
+}  // namespace scanstation::acquisition

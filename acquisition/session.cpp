@@ -1,0 +1,387 @@
+#include "acquisition/session.h"
+
+#include "core/errors.h"
+#include "core/io/station_geometry_json.h"
+#include "core/log.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace scanstation::acquisition {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kManifest = "manifest.json";
+constexpr const char* kJournal = "journal.jsonl";
+constexpr const char* kFormat = "scanstation-session";
+constexpr int kFormatVersion = 1;
+
+json vector_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+double seconds_of(drivers::Timestamp t) { return drivers::to_seconds(t); }
+
+json frame_json(const CapturedFrame& f, const std::string& file) {
+  return {{"file", file},
+          {"laser", f.laser ? json(*f.laser) : json(nullptr)},
+          {"sequence", f.frame.sequence},
+          {"timestamp_s", seconds_of(f.frame.timestamp)},
+          {"exposure_start_s", seconds_of(f.frame.exposure_start)},
+          {"settled_s", seconds_of(f.settled)},
+          {"discarded", f.discarded},
+          {"dropped_before", f.frame.dropped_before}};
+}
+
+std::string os_error(const std::string& what, const fs::path& path) {
+  return what + " " + path.string() + ": " + std::strerror(errno);
+}
+
+void write_fully(int fd, const std::string& text, const fs::path& path) {
+  std::string_view rest = text;
+  while (!rest.empty()) {
+    const ssize_t n = ::write(fd, rest.data(), rest.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(os_error("cannot append to", path));
+    }
+    rest.remove_prefix(static_cast<std::size_t>(n));
+  }
+  if (::fsync(fd) != 0) throw IoError(os_error("cannot flush", path));
+}
+
+int open_journal(const fs::path& path, bool truncate) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (truncate ? O_TRUNC : 0), 0644);
+  if (fd < 0) throw IoError(os_error("cannot open the journal", path));
+  return fd;
+}
+
+// ---- reading ---------------------------------------------------------------
+
+json read_manifest_json(const fs::path& folder) {
+  const fs::path path = folder / kManifest;
+  if (!fs::exists(path))
+    throw InvalidInput(path.string() + ": missing; " + folder.string() + " is not a scanstation session");
+  const json manifest = json::parse(io::read_file(path), nullptr, false);
+  if (manifest.is_discarded()) throw FormatError(FileLocation::whole(path), "a JSON document");
+  if (!manifest.is_object()) throw FormatError(FileLocation::whole(path), "a JSON object");
+  return manifest;
+}
+
+const json* find(const json& object, const char* key) {
+  if (!object.is_object()) return nullptr;
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+// The manifest's geometry; a camera that is missing, malformed or edited
+// makes the session unreplayable, a laser plane only drops that laser.
+void read_geometry(const json& manifest, const std::string& where, SessionContents& contents) {
+  const json* geometry = find(manifest, "geometry");
+  if (!geometry) throw InvalidInput(where + ": missing field \"geometry\": the session cannot be triangulated");
+  const json* digests = find(manifest, "geometry_digest");
+  TurntableGeometry& g = contents.manifest.geometry;
+  if (const json* source = find(*geometry, "source"); source && source->is_string()) g.source = *source;
+  const json* camera = find(*geometry, "camera");
+  if (!camera) throw InvalidInput(where + ": missing field \"geometry.camera\"");
+  g.camera = pinhole_camera_from_json(*camera, where + ": geometry.camera");
+  const json* camera_digest = digests ? find(*digests, "camera") : nullptr;
+  if (!camera_digest) {
+    contents.problems.push_back(where + ": missing field \"geometry_digest.camera\": the camera cannot be checked");
+  } else if (*camera_digest != json_digest(*camera)) {
+    throw InvalidInput(where + ": geometry.camera does not match geometry_digest.camera: the camera calibration was "
+                       "changed after the scan; restore it, or replay with another calibration on purpose");
+  }
+  const json* lasers = find(*geometry, "lasers");
+  if (!lasers || !lasers->is_array()) throw InvalidInput(where + ": missing field \"geometry.lasers\" (an array)");
+  const json* laser_digests = digests ? find(*digests, "lasers") : nullptr;
+  for (std::size_t i = 0; i < lasers->size(); ++i) {
+    const std::string field = "geometry.lasers[" + std::to_string(i) + "]";
+    try {
+      g.lasers.push_back(laser_plane_from_json((*lasers)[i], where + ": " + field));
+    } catch (const InvalidInput& e) {
+      g.lasers.emplace_back();
+      contents.problems.push_back(std::string(e.what()) + "; laser " + std::to_string(i) + " skipped");
+      continue;
+    }
+    if (!laser_digests || !laser_digests->is_array() || i >= laser_digests->size()) {
+      contents.problems.push_back(where + ": missing field \"geometry_digest.lasers[" + std::to_string(i) +
+                                  "]\": laser " + std::to_string(i) + " cannot be checked");
+    } else if ((*laser_digests)[i] != json_digest((*lasers)[i])) {
+      contents.problems.push_back(where + ": " + field + " does not match geometry_digest.lasers[" +
+                                  std::to_string(i) + "]: the laser plane was changed after the scan; laser " +
+                                  std::to_string(i) + " skipped");
+      continue;
+    }
+    contents.lasers.push_back(static_cast<int>(i));
+  }
+}
+
+void read_object(const json& manifest, const std::string& where, SessionContents& contents) {
+  const json* object = find(manifest, "object");
+  if (!object) {
+    contents.problems.push_back(where + ": missing field \"object\": points stay in the platter frame");
+    return;
+  }
+  SessionObject& o = contents.manifest.object;
+  if (const json* name = find(*object, "name"); name && name->is_string()) o.name = *name;
+  if (const json* mesh = find(*object, "mesh_file"); mesh && mesh->is_string()) o.mesh_file = *mesh;
+  const json* placement = find(*object, "placement");
+  if (!placement) return;
+  const json* scale = find(*placement, "scale");
+  if (!scale || !scale->is_number() || !(scale->get<double>() > 0))
+    throw InvalidInput(where + ": object.placement.scale: expected a positive number");
+  o.placement.scale = *scale;
+  const json* translation = find(*placement, "translation");
+  if (!translation || !translation->is_array() || translation->size() != 3 ||
+      !std::all_of(translation->begin(), translation->end(), [](const json& v) { return v.is_number(); }))
+    throw InvalidInput(where + ": object.placement.translation: expected an array of 3 numbers");
+  for (int k = 0; k < 3; ++k) o.placement.translation[k] = (*translation)[static_cast<std::size_t>(k)];
+}
+
+void read_manifest(const fs::path& folder, SessionContents& contents) {
+  const json manifest = read_manifest_json(folder);
+  const std::string where = (folder / kManifest).string();
+  SessionManifest& m = contents.manifest;
+  const json* format = find(manifest, "format");
+  if (!format || *format != kFormat)
+    contents.problems.push_back(where + ": field \"format\" is not \"" + std::string(kFormat) + "\"; read anyway");
+  const json* rig = find(manifest, "rig");
+  if (!rig || !rig->is_string()) throw InvalidInput(where + ": missing field \"rig\" (a string)");
+  m.rig = *rig;
+  if (m.rig != "turntable")
+    throw InvalidInput(where + ": rig \"" + m.rig + "\": only turntable sessions can be replayed");
+  const json* steps = find(manifest, "steps");
+  if (!steps || !steps->is_number_integer() || steps->get<long long>() < 1 || steps->get<long long>() > 1 << 20)
+    throw InvalidInput(where + ": missing field \"steps\" (a positive integer)");
+  m.steps = *steps;
+  read_geometry(manifest, where, contents);
+  if (const json* parameters = find(manifest, "parameters")) {
+    std::vector<std::string> missing;
+    m.parameters = laser_scan_parameters_from_json(*parameters, where + ": parameters", {}, &missing);
+    for (const std::string& field : missing)
+      contents.problems.push_back(where + ": missing field \"" + field.substr(where.size() + 2) +
+                                  "\": the default is used");
+  } else {
+    contents.problems.push_back(where + ": missing field \"parameters\": the defaults are used");
+  }
+  read_object(manifest, where, contents);
+  if (const json* station = find(manifest, "station")) {
+    m.station = *station;
+  } else {
+    contents.problems.push_back(where + ": missing field \"station\"");
+  }
+  const json* software = find(manifest, "software");
+  const json* version = software ? find(*software, "version") : nullptr;
+  if (version && version->is_string()) {
+    m.software_version = *version;
+  } else {
+    contents.problems.push_back(where + ": missing field \"software.version\"");
+  }
+}
+
+// One step line of the journal, or a message saying what is wrong with it.
+std::optional<SessionStep> parse_step(const json& line, const std::string& where, std::string& problem) {
+  const json* step = find(line, "step");
+  const json* angle = find(line, "angle_deg");
+  const json* frames = find(line, "frames");
+  if (!step || !step->is_number_integer()) return problem = where + ": missing field \"step\"", std::nullopt;
+  if (!angle || !angle->is_number()) return problem = where + ": missing field \"angle_deg\"", std::nullopt;
+  if (!frames || !frames->is_array()) return problem = where + ": missing field \"frames\"", std::nullopt;
+  SessionStep s;
+  s.step = *step;
+  s.angle_deg = *angle;
+  double first = 0, last = 0;
+  if (const json* start = find(line, "move_start_s"); start && start->is_number()) first = last = *start;
+  for (std::size_t i = 0; i < frames->size(); ++i) {
+    const json& f = (*frames)[i];
+    const json* file = find(f, "file");
+    const json* laser = find(f, "laser");
+    if (!file || !file->is_string() || !laser || !(laser->is_null() || laser->is_number_integer()))
+      return problem = where + ": frames[" + std::to_string(i) + "]: expected \"file\" and \"laser\"", std::nullopt;
+    s.frames.push_back({*file, laser->is_null() ? std::nullopt : std::optional<int>(laser->get<int>())});
+    if (const json* t = find(f, "timestamp_s"); t && t->is_number()) last = std::max(last, t->get<double>());
+  }
+  s.seconds = last - first;
+  return s;
+}
+
+void read_journal(const fs::path& folder, SessionContents& contents) {
+  const fs::path path = folder / kJournal;
+  if (!fs::exists(path)) {
+    contents.problems.push_back(path.string() + ": missing: no step was recorded");
+    return;
+  }
+  const std::string text = io::read_file(path);
+  std::size_t begin = 0, line_number = 0;
+  while (begin < text.size()) {
+    ++line_number;
+    const std::size_t end = text.find('\n', begin);
+    const std::string where = path.string() + ":" + std::to_string(line_number);
+    if (end == std::string::npos) {
+      contents.problems.push_back(where + ": truncated line (the scan stopped while writing it): ignored");
+      break;
+    }
+    const json line = json::parse(text.begin() + static_cast<std::ptrdiff_t>(begin),
+                                  text.begin() + static_cast<std::ptrdiff_t>(end), nullptr, false);
+    begin = end + 1;
+    contents.journal_end = begin;
+    if (line.is_discarded() || !line.is_object()) {
+      contents.problems.push_back(where + ": not a JSON object: ignored");
+      continue;
+    }
+    const json* event = find(line, "event");
+    if (!event || *event != "step") continue;
+    std::string problem;
+    if (auto step = parse_step(line, where, problem)) {
+      step->journal_line = line_number;
+      contents.steps.push_back(std::move(*step));
+    } else {
+      contents.problems.push_back(problem + ": step ignored");
+    }
+  }
+}
+
+}  // namespace
+
+std::string frame_file_name(int step, std::optional<int> laser) {
+  char name[64];
+  if (laser)
+    std::snprintf(name, sizeof name, "frames/step_%04d_laser%d.png", step, *laser);
+  else
+    std::snprintf(name, sizeof name, "frames/step_%04d_off.png", step);
+  return name;
+}
+
+json to_json(const SessionManifest& m) {
+  const json geometry = to_json(m.geometry);
+  json laser_digests = json::array();
+  for (const json& laser : geometry["lasers"]) laser_digests.push_back(json_digest(laser));
+  return {{"format", kFormat},
+          {"version", kFormatVersion},
+          {"software", {{"name", "scanstation"}, {"version", m.software_version}}},
+          {"rig", m.rig},
+          {"steps", m.steps},
+          {"station", m.station},
+          {"geometry", geometry},
+          {"geometry_digest", {{"camera", json_digest(geometry["camera"])}, {"lasers", laser_digests}}},
+          {"parameters", to_json(m.parameters)},
+          {"object",
+           {{"name", m.object.name},
+            {"mesh_file", m.object.mesh_file},
+            {"placement",
+             {{"scale", m.object.placement.scale}, {"translation", vector_json(m.object.placement.translation)}}}}}};
+}
+
+json station_json(const drivers::StationDescription& d) {
+  json lasers = json::array();
+  for (const drivers::LaserRole& laser : d.lasers) lasers.push_back(laser.backend);
+  const drivers::CameraFormat& format = d.camera.format;
+  json station = {{"name", d.name},
+                  {"file", d.source.string()},
+                  {"camera", {{"backend", d.camera.backend},
+                              {"pixel_format", drivers::pixel_format_name(format.format)},
+                              {"width", format.size.width},
+                              {"height", format.size.height}}},
+                  {"lasers", lasers},
+                  {"turntable", {{"backend", d.turntable.backend},
+                                 {"steps_per_rev", d.turntable.stepper.steps_per_rev()}}},
+                  {"usb_simulated", d.usb_simulated}};
+  if (!d.source.empty() && fs::exists(d.source)) station["toml"] = io::read_file(d.source);
+  return station;
+}
+
+SessionContents read_session(const fs::path& folder) {
+  SessionContents contents;
+  contents.folder = folder;
+  read_manifest(folder, contents);
+  read_journal(folder, contents);
+  return contents;
+}
+
+// ---- recording -------------------------------------------------------------
+
+SessionRecorder::SessionRecorder(fs::path folder, SessionManifest manifest, int journal_fd, int steps_done)
+    : folder_(std::move(folder)), manifest_(std::move(manifest)), journal_fd_(journal_fd), steps_done_(steps_done) {}
+
+SessionRecorder::SessionRecorder(SessionRecorder&& other) noexcept
+    : folder_(std::move(other.folder_)), manifest_(std::move(other.manifest_)), journal_fd_(other.journal_fd_),
+      steps_done_(other.steps_done_), notes_(std::move(other.notes_)) {
+  other.journal_fd_ = -1;
+}
+
+SessionRecorder::~SessionRecorder() {
+  if (journal_fd_ >= 0) ::close(journal_fd_);
+}
+
+SessionRecorder SessionRecorder::create(const fs::path& folder, const SessionManifest& manifest,
+                                        io::Overwrite overwrite) {
+  if (overwrite == io::Overwrite::refuse && (fs::exists(folder / kManifest) || fs::exists(folder / kJournal)))
+    throw InvalidInput(folder.string() + ": holds a session already; continue it with --resume, or use --force to "
+                       "start over");
+  if (overwrite == io::Overwrite::replace) {
+    for (const char* name : {kJournal, "points.ply", "report.json"}) fs::remove(folder / name);
+    fs::remove_all(folder / "frames");
+  }
+  fs::create_directories(folder / "frames");
+  io::write_file_atomically(folder / kManifest, to_json(manifest).dump(2) + "\n", overwrite);
+  return SessionRecorder(folder, manifest, open_journal(folder / kJournal, true), 0);
+}
+
+SessionRecorder SessionRecorder::resume(const fs::path& folder) {
+  const SessionContents contents = read_session(folder);
+  for (std::size_t i = 0; i < contents.steps.size(); ++i)
+    if (contents.steps[i].step != static_cast<int>(i))
+      throw InvalidInput((folder / kJournal).string() + ":" + std::to_string(contents.steps[i].journal_line) +
+                         ": step " + std::to_string(contents.steps[i].step) + " where step " + std::to_string(i) +
+                         " was expected: the journal cannot be continued");
+  // Cut whatever follows the last complete line (a line torn by the
+  // interruption), so that new lines start on a line of their own.
+  const fs::path journal = folder / kJournal;
+  if (fs::exists(journal) && fs::file_size(journal) > contents.journal_end)
+    fs::resize_file(journal, contents.journal_end);
+  SessionRecorder recorder(folder, contents.manifest, open_journal(journal, false),
+                           static_cast<int>(contents.steps.size()));
+  recorder.notes_ = contents.problems;
+  fs::create_directories(folder / "frames");
+  return recorder;
+}
+
+void SessionRecorder::append(const json& line) { write_fully(journal_fd_, line.dump() + "\n", folder_ / kJournal); }
+
+void SessionRecorder::event(const std::string& name, const json& fields) {
+  json line = {{"event", name}};
+  line.update(fields);
+  append(line);
+}
+
+void SessionRecorder::record(const CapturedStep& step) {
+  json frames = json::array();
+  const std::vector<int> png_options{cv::IMWRITE_PNG_COMPRESSION, 1};
+  for (const CapturedFrame& frame : step.frames) {
+    const std::string file = frame_file_name(step.step, frame.laser);
+    std::vector<unsigned char> png;
+    if (!cv::imencode(".png", frame.frame.image, png, png_options))
+      throw IoError("cannot encode " + (folder_ / file).string() + " as PNG");
+    io::write_file_atomically(folder_ / file, {reinterpret_cast<const char*>(png.data()), png.size()},
+                              io::Overwrite::replace);
+    frames.push_back(frame_json(frame, file));
+  }
+  append({{"event", "step"},
+          {"step", step.step},
+          {"angle_deg", step.angle_deg},
+          {"move_start_s", seconds_of(step.move_start)},
+          {"move_settled_s", seconds_of(step.move_settled)},
+          {"exposure", step.exposure},
+          {"gain", step.gain},
+          {"frames", frames}});
+  steps_done_ = step.step + 1;
+}
+
+}  // namespace scanstation::acquisition

@@ -1,0 +1,66 @@
+// Processing a recorded session into points: the scan command does it on the
+// session it has just recorded, the replay command on any session, with the
+// recorded or new parameters. Same session and parameters → the same
+// points.ply, byte for byte.
+#pragma once
+
+#include "acquisition/session.h"
+#include "acquisition/turntable_step_points.h"
+#include "core/progress.h"
+
+#include <functional>
+#include <optional>
+
+namespace scanstation::acquisition {
+
+/// parameters  replaces the recorded processing parameters
+/// geometry    replaces the recorded geometry (another calibration, on purpose)
+/// on_step     called after each recorded step with its index, angle, its
+///             points (one cloud per laser, platter object frame; empty when
+///             its frames are unusable) and the number of points so far —
+///             a replay feeds a live view or an incremental reconstruction
+///             batch by batch, as the scan does
+struct ReplayOptions {
+  std::optional<LaserScanParameters> parameters;
+  std::optional<TurntableGeometry> geometry;
+  ProgressCallback progress;
+  std::function<void(int step, double angle_deg, const std::vector<LaserScanPoints>& step_points,
+                     Eigen::Index points_so_far)>
+      on_step;
+};
+
+/// points            the scan in the object's own coordinates (the mesh file's
+///                   for a simulated mesh), step by step, laser by laser
+/// by_laser          the same points per laser, in the platter's object frame
+/// steps_used        steps that gave frames to process
+/// problems          the session's damage (read_session) and every frame
+///                   that could not be used, each naming its file
+/// capture_seconds   the recorded steps' own duration (move start to last frame)
+/// process_seconds   wall time of the processing
+struct ScanResult {
+  LaserScanPoints points;
+  std::vector<LaserScanPoints> by_laser;
+  int steps_used = 0;
+  Eigen::Index outliers_removed = 0;
+  LaserScanParameters parameters;
+  std::vector<std::string> problems;
+  double capture_seconds = 0, process_seconds = 0;
+};
+
+/// Processes every recorded step of `session` (missing or unreadable frames
+/// skip their laser, or the step for a laser-off frame, with a problem
+/// noted), then removes outliers if the parameters ask for it and turns the
+/// points into the object's own coordinates (manifest object.placement).
+ScanResult replay_session(const SessionContents& session, const ReplayOptions& options = {});
+
+/// A frame of a session as recorded (8 or 16 bit); empty if missing or unreadable.
+cv::Mat read_session_frame(const std::filesystem::path& file);
+
+/// Writes `folder`/points.ply (binary, with colours) and `folder`/report.json:
+/// session, steps planned/recorded/used, points per laser, outliers, the
+/// parameters, problems, capture and processing seconds and their ratio.
+/// `extra` is merged into the report. Returns the report.
+nlohmann::json write_scan_results(const std::filesystem::path& folder, const SessionContents& session,
+                                  const ScanResult& result, const nlohmann::json& extra, io::Overwrite overwrite);
+
+}  // namespace scanstation::acquisition

@@ -1,0 +1,25 @@
+// The laser-scan processing options `scan` and `replay` share: each given
+// option overrides the base parameters (the defaults for a scan, the
+// session's recorded ones for a replay).
+#pragma once
+
+#include "acquisition/laser_scan_parameters.h"
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+namespace scanstation::app {
+
+struct ScanParameterOptions {
+  std::optional<std::string> peak_fit;
+  std::optional<double> threshold_sigmas, minimum_contrast, double_peak_ratio, minimum_height, maximum_radius,
+      outlier_radius;
+  std::optional<int> minimum_width, maximum_width, outlier_neighbours;
+
+  void add_to(CLI::App& cli);
+  bool any() const;
+  acquisition::LaserScanParameters apply(acquisition::LaserScanParameters base) const;
+};
+
+}  // namespace scanstation::app

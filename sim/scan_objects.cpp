@@ -1,0 +1,72 @@
+#include "sim/scan_objects.h"
+
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "sim/shapes.h"
+#include "sim/surface_of_revolution.h"
+
+#include <filesystem>
+
+namespace scanstation::sim {
+
+namespace {
+
+TriangleMesh builtin(const std::string& name) {
+  if (name == "sphere") {
+    TriangleMesh sphere = icosphere(6);
+    sphere.vertices.positions *= 30.0;
+    sphere.vertices.positions.rowwise() += Eigen::RowVector3d(6.0, -4.0, 30.0);
+    return sphere;
+  }
+  if (name == "ellipsoid") {
+    TriangleMesh e = ellipsoid({32.0, 20.0, 26.0}, 6);
+    e.vertices.positions.rowwise() += Eigen::RowVector3d(0.0, 0.0, 26.0);
+    return e;
+  }
+  if (name == "torus") {
+    TriangleMesh t = torus(28.0, 10.0, 240, 80);
+    t.vertices.positions.rowwise() += Eigen::RowVector3d(0.0, 0.0, 10.0);
+    return t;
+  }
+  if (name == "chalice") return surface_of_revolution(40.0 * chalice_profile(300), 720);
+  return surface_of_revolution(40.0 * candlestick_profile(300), 720);
+}
+
+}  // namespace
+
+const std::vector<std::string>& builtin_scan_objects() {
+  static const std::vector<std::string> names{"sphere", "ellipsoid", "torus", "chalice", "candlestick"};
+  return names;
+}
+
+ScanObject scan_object(const std::string& name_or_file, double max_radius, double max_height) {
+  ScanObject object;
+  object.name = name_or_file;
+  const auto& names = builtin_scan_objects();
+  if (std::find(names.begin(), names.end(), name_or_file) != names.end()) {
+    object.on_platter = builtin(name_or_file);
+    return object;
+  }
+  if (!std::filesystem::exists(name_or_file)) {
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw InvalidInput("--object '" + name_or_file + "': neither a built-in object (" + known + ") nor a mesh file");
+  }
+  object.mesh_file = name_or_file;
+  TriangleMesh mesh = io::read_mesh(name_or_file);
+  if (mesh.face_count() == 0) throw InvalidInput(name_or_file + ": a mesh with faces is needed to simulate a scan");
+  const Eigen::MatrixX3d& P = mesh.vertices.positions;
+  const Eigen::RowVector3d low = P.colwise().minCoeff(), high = P.colwise().maxCoeff();
+  const Eigen::RowVector2d axis = 0.5 * (low + high).head<2>();
+  const double radius = (P.leftCols<2>().rowwise() - axis).rowwise().norm().maxCoeff();
+  const double height = high.z() - low.z();
+  if (!(radius > 0) || !(height > 0)) throw InvalidInput(name_or_file + ": the mesh has no extent to scan");
+  object.scale = std::min(max_radius / radius, max_height / height);
+  object.translation = -object.scale * Eigen::Vector3d(axis.x(), axis.y(), low.z());
+  mesh.vertices.positions = ((P * object.scale).rowwise() + object.translation.transpose()).eval();
+  mesh.vertices.normals.resize(0, 3);
+  object.on_platter = std::move(mesh);
+  return object;
+}
+
+}  // namespace scanstation::sim

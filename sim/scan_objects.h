@@ -1,0 +1,40 @@
+// Objects for the simulated turntable: the built-in shapes with known
+// surfaces (in millimetres, standing on the platter) and any mesh file,
+// placed and scaled to fit the rig.
+#pragma once
+
+#include "core/triangle_mesh.h"
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace scanstation::sim {
+
+/// name         built-in name or the mesh file's path
+/// mesh_file    "" for a built-in object
+/// on_platter   the mesh as it stands on the platter (object frame, z ≥ 0)
+/// scale, translation  the placement: on_platter = scale · own + translation,
+///              where `own` are the mesh file's coordinates (identity for a
+///              built-in object, whose own coordinates are the platter's)
+struct ScanObject {
+  std::string name;
+  std::string mesh_file;
+  TriangleMesh on_platter;
+  double scale = 1.0;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+
+/// Names of the built-in objects: sphere (r 30 mm, off the axis), ellipsoid,
+/// torus (genus 1, lying on the platter), chalice (a deep concavity) and
+/// candlestick (grooves).
+const std::vector<std::string>& builtin_scan_objects();
+
+/// A built-in object by name, or else the mesh file `name_or_file` (any
+/// format read_mesh reads, with faces) centred on the turntable axis, its
+/// lowest point on the platter, scaled to fit within `max_radius` of the axis
+/// and `max_height` above the platter. Throws InvalidInput for an unknown
+/// name that is no file, or a mesh without faces or extent.
+ScanObject scan_object(const std::string& name_or_file, double max_radius = 40.0, double max_height = 80.0);
+
+}  // namespace scanstation::sim

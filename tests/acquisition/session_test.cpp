@@ -1,0 +1,351 @@
+// Sessions end to end on the simulator: a scan driven through the driver
+// interfaces (the simulated camera renders the scene the simulated stepper
+// and laser lines set), recorded, replayed, resumed and damaged.
+#include "acquisition/scan_accuracy.h"
+#include "acquisition/session_recording.h"
+#include "acquisition/session_replay.h"
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "sim/simulated_turntable.h"
+#include "sim/surface_of_revolution.h"
+#include "profile_distance.h"
+#include "test_support.h"
+
+#include <fstream>
+#include <numbers>
+
+namespace scanstation::acquisition {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+drivers::StationDescription small_station(drivers::PixelFormat format = drivers::PixelFormat::grey) {
+  drivers::StationDescription d;
+  d.camera.format.format = format;
+  d.camera.format.size = {320, 240};
+  d.lasers = {drivers::LaserRole{}, drivers::LaserRole{}};
+  return d;
+}
+
+// A simulated station for `object`, opened as the scan command does.
+struct SimStation {
+  drivers::StationDescription description;
+  sim::SimulatedTurntable simulated;
+  std::unique_ptr<sim::OpenStation> station;
+
+  explicit SimStation(const std::string& object, drivers::PixelFormat format = drivers::PixelFormat::grey)
+      : description(small_station(format)),
+        simulated(sim::simulated_turntable(sim::scan_object(object), description)),
+        station(sim::open_station(description, sim::camera_role | sim::laser_role | sim::turntable_role,
+                                  simulated.frames)) {}
+
+  TurntableScanDevices devices() {
+    TurntableScanDevices d{*station->camera, {}, *station->turntable, *station->clock, std::chrono::seconds(2)};
+    for (auto& laser : station->lasers) d.lasers.push_back(laser.get());
+    return d;
+  }
+
+  SessionManifest manifest(int steps) const {
+    SessionManifest m;
+    m.steps = steps;
+    m.station = station_json(description);
+    m.geometry.camera = simulated.rig.camera;
+    for (const auto& laser : simulated.rig.lasers) m.geometry.lasers.push_back(laser.plane);
+    m.geometry.source = "simulator truth";
+    m.object = {simulated.object.name, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
+    m.software_version = "test";
+    return m;
+  }
+};
+
+// Records `steps` steps of `object` into `folder` (stopping after
+// `stop_after` when > 0), then processes the session into its points.ply.
+RecordingOutcome scan(const fs::path& folder, const std::string& object, int steps, int stop_after = 0,
+                      drivers::PixelFormat format = drivers::PixelFormat::grey) {
+  SimStation sim(object, format);
+  SessionRecorder recorder = SessionRecorder::create(folder, sim.manifest(steps), io::Overwrite::refuse);
+  auto devices = sim.devices();
+  return record_turntable_session(devices, recorder, {}, stop_after);
+}
+
+RecordingOutcome resume(const fs::path& folder) {
+  SessionRecorder recorder = SessionRecorder::resume(folder);
+  SimStation sim(recorder.manifest().object.name);
+  auto devices = sim.devices();
+  return record_turntable_session(devices, recorder);
+}
+
+ScanResult process(const fs::path& folder, const fs::path& out) {
+  const SessionContents contents = read_session(folder);
+  ScanResult result = replay_session(contents);
+  write_scan_results(out, contents, result, {}, io::Overwrite::replace);
+  return result;
+}
+
+std::string bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+double diagonal(const Eigen::MatrixX3d& P) { return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm(); }
+
+using test::profile_distance;
+
+std::vector<json> journal_steps(const fs::path& folder) {
+  std::ifstream in(folder / "journal.jsonl");
+  std::vector<json> steps;
+  for (std::string line; std::getline(in, line);) {
+    const json event = json::parse(line);
+    if (event["event"] == "step") steps.push_back(event);
+  }
+  return steps;
+}
+
+// One scanned session shared by the tests that only read it (a scan is the
+// expensive part).
+class RecordedSphere : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    folder_ = new test::ScratchFolder;
+    const RecordingOutcome outcome = scan(session(), "sphere", kSteps);
+    ASSERT_TRUE(outcome.complete);
+    process(session(), session());
+  }
+  static void TearDownTestSuite() { delete folder_; }
+  static fs::path session() { return *folder_ / "sphere"; }
+  // A copy of the session to damage.
+  static fs::path copy(const test::ScratchFolder& scratch) {
+    const fs::path to = scratch / "copy";
+    fs::copy(session(), to, fs::copy_options::recursive);
+    return to;
+  }
+  static constexpr int kSteps = 8;
+  static test::ScratchFolder* folder_;
+};
+test::ScratchFolder* RecordedSphere::folder_ = nullptr;
+
+TEST_F(RecordedSphere, PointsWithinTheAccuracyBudget) {
+  const PointCloud points = io::read_points(session() / "points.ply");
+  const Eigen::MatrixX3d& P = points.positions;
+  ASSERT_GT(P.rows(), 1000);
+  EXPECT_EQ(points.colors.rows(), P.rows());
+  const Eigen::Vector3d centre{6.0, -4.0, 30.0};
+  const Eigen::VectorXd distance = ((P.rowwise() - centre.transpose()).rowwise().norm().array() - 30.0).abs();
+  const double rms = std::sqrt(distance.squaredNorm() / static_cast<double>(P.rows()));
+  const double budget = 5e-4 * 60.0 * std::sqrt(3.0);  // the sphere's bounding-box diagonal
+  std::printf("sphere session: %ld points, RMS %.4f mm (budget %.4f)\n", static_cast<long>(P.rows()), rms, budget);
+  EXPECT_LE(rms, budget);
+}
+
+TEST_F(RecordedSphere, GpioTransitionsMatchTheJournal) {
+  // Re-run the same scan on a fresh station to look at its lines (the
+  // recording above let its station go).
+  test::ScratchFolder scratch;
+  SimStation sim("sphere");
+  SessionRecorder recorder = SessionRecorder::create(scratch / "s", sim.manifest(kSteps), io::Overwrite::refuse);
+  auto devices = sim.devices();
+  record_turntable_session(devices, recorder);
+  const sim::SimGpioChip& chip = *sim.station->sim_chip;
+  const auto steps = journal_steps(scratch / "s");
+  ASSERT_EQ(steps.size(), std::size_t(kSteps));
+  const unsigned step_line = chip.offset_of("STEP");
+  const auto rising_edges = [&](double from, double to) {
+    int count = 0;
+    for (const sim::Transition& t : chip.transitions(step_line))
+      count += t.level && drivers::to_seconds(t.time) >= from && drivers::to_seconds(t.time) <= to;
+    return count;
+  };
+  const double steps_per_rev = sim.description.turntable.stepper.steps_per_rev();
+  double previous_angle = 0;
+  for (const json& step : steps) {
+    // The pulses of the move turned the table by the journal's angle.
+    const double moved = step["angle_deg"].get<double>() - previous_angle;
+    EXPECT_EQ(rising_edges(step["move_start_s"], step["move_settled_s"]),
+              std::lround(moved * steps_per_rev / 360.0))
+        << step.dump();
+    previous_angle = step["angle_deg"];
+    // Each frame was exposed, after the move settled, with exactly the laser
+    // the journal names lit and no pulse on the STEP line.
+    const double exposure = step["exposure"].get<double>() * 1e-4;
+    ASSERT_EQ(step["frames"].size(), 3u);
+    for (const json& frame : step["frames"]) {
+      const auto from = drivers::seconds(frame["exposure_start_s"].get<double>());
+      const auto to = from + drivers::seconds(exposure);
+      EXPECT_GT(frame["exposure_start_s"].get<double>(), step["move_settled_s"].get<double>());
+      EXPECT_GE(frame["exposure_start_s"].get<double>(), frame["settled_s"].get<double>());
+      for (int laser = 0; laser < 2; ++laser) {
+        const bool lit = frame["laser"] == laser;
+        EXPECT_EQ(chip.fraction_high(chip.offset_of("LASER" + std::to_string(laser)), from, to), lit ? 1.0 : 0.0)
+            << frame.dump();
+      }
+      EXPECT_EQ(rising_edges(drivers::to_seconds(from), drivers::to_seconds(to)), 0);
+    }
+  }
+  // Lasers off and no stray step after the scan.
+  EXPECT_FALSE(chip.level(chip.offset_of("LASER0")));
+  EXPECT_FALSE(chip.level(chip.offset_of("LASER1")));
+}
+
+TEST_F(RecordedSphere, ReplayGivesByteIdenticalPointsAndNewParametersOtherOnes) {
+  test::ScratchFolder scratch;
+  const ScanResult same = process(session(), scratch / "same");
+  EXPECT_EQ(bytes(scratch / "same" / "points.ply"), bytes(session() / "points.ply"));
+  EXPECT_TRUE(same.problems.empty()) << same.problems.front();
+  std::printf("replay: capture %.2f s, processing %.3f s: %.0fx faster\n", same.capture_seconds, same.process_seconds,
+              same.capture_seconds / same.process_seconds);
+  const json report = json::parse(bytes(scratch / "same" / "report.json"));
+  EXPECT_EQ(report["steps"]["used"], kSteps);
+  EXPECT_TRUE(report["complete"].get<bool>());
+
+  ReplayOptions options;
+  LaserScanParameters changed;
+  changed.line.fit = PeakFit::centre_of_mass;
+  options.parameters = changed;
+  const ScanResult other = replay_session(read_session(session()), options);
+  EXPECT_EQ(other.points.cloud.size(), same.points.cloud.size());
+  EXPECT_FALSE(other.points.cloud.positions.isApprox(same.points.cloud.positions, 1e-12));
+}
+
+TEST_F(RecordedSphere, MissingFramesAreNamedAndTheRestReplayed) {
+  test::ScratchFolder scratch;
+  const fs::path damaged = copy(scratch);
+  fs::remove(damaged / frame_file_name(2, 1));
+  fs::remove(damaged / frame_file_name(5, std::nullopt));
+  const ScanResult full = replay_session(read_session(session()));
+  const ScanResult partial = replay_session(read_session(damaged));
+  ASSERT_EQ(partial.problems.size(), 2u);
+  EXPECT_THAT(partial.problems[0], testing::HasSubstr("step_0002_laser1.png: missing"));
+  EXPECT_THAT(partial.problems[0], testing::HasSubstr("step 2 laser 1 skipped"));
+  EXPECT_THAT(partial.problems[1], testing::HasSubstr("step_0005_off.png: missing"));
+  EXPECT_THAT(partial.problems[1], testing::HasSubstr("step 5 skipped"));
+  EXPECT_EQ(partial.steps_used, kSteps - 1);
+  EXPECT_GT(partial.points.cloud.size(), full.points.cloud.size() / 2);
+  EXPECT_LT(partial.points.cloud.size(), full.points.cloud.size());
+}
+
+TEST_F(RecordedSphere, TruncatedJournalLineIsNamedAndTheStepsBeforeReplayed) {
+  test::ScratchFolder scratch;
+  const fs::path damaged = copy(scratch);
+  // Cut the journal in the middle of the last step's line.
+  std::string journal = bytes(damaged / "journal.jsonl");
+  const std::size_t last_step = journal.rfind("{\"angle_deg\"");
+  ASSERT_NE(last_step, std::string::npos);
+  journal.resize(last_step + 40);
+  std::ofstream(damaged / "journal.jsonl", std::ios::binary | std::ios::trunc) << journal;
+  const SessionContents contents = read_session(damaged);
+  ASSERT_EQ(contents.steps.size(), std::size_t(kSteps - 1));
+  ASSERT_EQ(contents.problems.size(), 1u);
+  EXPECT_THAT(contents.problems[0], testing::ContainsRegex("journal.jsonl:[0-9]+: truncated line"));
+  EXPECT_EQ(replay_session(contents).steps_used, kSteps - 1);
+}
+
+// Rewrites the manifest through `edit`.
+void edit_manifest(const fs::path& session, const std::function<void(json&)>& edit) {
+  json manifest = json::parse(bytes(session / "manifest.json"));
+  edit(manifest);
+  std::ofstream(session / "manifest.json", std::ios::trunc) << manifest.dump(2);
+}
+
+TEST_F(RecordedSphere, AlteredCalibrationIsRefusedOrItsLaserSkipped) {
+  test::ScratchFolder scratch;
+  const fs::path damaged = copy(scratch);
+  edit_manifest(damaged, [](json& m) { m["geometry"]["lasers"][1]["origin"][0] = 12.5; });
+  const ScanResult partial = replay_session(read_session(damaged));
+  ASSERT_EQ(partial.problems.size(), 1u);
+  EXPECT_THAT(partial.problems[0], testing::HasSubstr("manifest.json: geometry.lasers[1] does not match"));
+  EXPECT_THAT(partial.problems[0], testing::HasSubstr("laser 1 skipped"));
+  EXPECT_EQ(partial.by_laser[1].cloud.size(), 0);
+  EXPECT_GT(partial.by_laser[0].cloud.size(), 500);
+
+  edit_manifest(damaged, [](json& m) { m["geometry"]["camera"]["fx"] = 1.01 * m["geometry"]["camera"]["fx"].get<double>(); });
+  test::expect_error<InvalidInput>([&] { read_session(damaged); },
+                                   {"manifest.json: geometry.camera does not match", "changed after the scan"});
+  edit_manifest(damaged, [](json& m) { m["geometry"]["camera"].erase("fy"); });
+  test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"geometry.camera", "\"fy\""});
+}
+
+TEST_F(RecordedSphere, MissingManifestFieldsAreNamed) {
+  test::ScratchFolder scratch;
+  const fs::path damaged = copy(scratch);
+  edit_manifest(damaged, [](json& m) {
+    m.erase("software");
+    m["parameters"].erase("threshold_sigmas");
+  });
+  const ScanResult result = replay_session(read_session(damaged));
+  ASSERT_EQ(result.problems.size(), 2u);
+  EXPECT_THAT(result.problems[0], testing::HasSubstr("missing field \"parameters.threshold_sigmas\": the default is used"));
+  EXPECT_THAT(result.problems[1], testing::HasSubstr("missing field \"software.version\""));
+  EXPECT_EQ(result.steps_used, kSteps);
+  edit_manifest(damaged, [](json& m) { m.erase("geometry"); });
+  test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json", "missing field \"geometry\""});
+  fs::remove(damaged / "manifest.json");
+  test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json: missing"});
+}
+
+TEST_F(RecordedSphere, ResumedScanGivesTheSamePointsAsAnUninterruptedOne) {
+  test::ScratchFolder scratch;
+  const fs::path interrupted = scratch / "interrupted";
+  const RecordingOutcome first = scan(interrupted, "sphere", kSteps, 3);
+  EXPECT_EQ(first.steps_done, 3);
+  EXPECT_FALSE(first.complete);
+  // The interruption tore the journal mid-line: resume cuts the torn line.
+  std::ofstream(interrupted / "journal.jsonl", std::ios::app) << "{\"event\":\"step\",\"step\":3,\"ang";
+  const RecordingOutcome second = resume(interrupted);
+  EXPECT_EQ(second.recorded_now, kSteps - 3);
+  EXPECT_TRUE(second.complete);
+  process(interrupted, interrupted);
+  EXPECT_EQ(bytes(interrupted / "points.ply"), bytes(session() / "points.ply"));
+  EXPECT_TRUE(read_session(interrupted).problems.empty());
+}
+
+TEST_F(RecordedSphere, SixteenBitFramesAreKeptAndGiveTheSamePoints) {
+  test::ScratchFolder scratch;
+  ASSERT_TRUE(scan(scratch / "y16", "sphere", kSteps, 0, drivers::PixelFormat::y16).complete);
+  EXPECT_EQ(read_session_frame(scratch / "y16" / frame_file_name(0, 0)).type(), CV_16UC1);
+  process(scratch / "y16", scratch / "y16");
+  EXPECT_EQ(bytes(scratch / "y16" / "points.ply"), bytes(session() / "points.ply"));
+}
+
+TEST(Session, ChaliceScanWithinTheAccuracyBudget) {
+  test::ScratchFolder scratch;
+  ASSERT_TRUE(scan(scratch / "chalice", "chalice", 6).complete);
+  const ScanResult result = process(scratch / "chalice", scratch / "chalice");
+  const Eigen::MatrixX3d& P = result.points.cloud.positions;
+  ASSERT_GT(P.rows(), 1000);
+  const Eigen::MatrixX2d profile = 40.0 * sim::chalice_profile(300);
+  double squared = 0;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) squared += std::pow(profile_distance(profile, P.row(i)), 2);
+  const double rms = std::sqrt(squared / static_cast<double>(P.rows()));
+  const double budget = 5e-4 * diagonal(sim::scan_object("chalice").on_platter.vertices.positions);
+  std::printf("chalice session: %ld points, RMS %.4f mm (budget %.4f)\n", static_cast<long>(P.rows()), rms, budget);
+  EXPECT_LE(rms, budget);
+}
+
+TEST(Session, RefusesToOverwriteAndToResumeNothing) {
+  test::ScratchFolder scratch;
+  SimStation sim("sphere");
+  SessionRecorder::create(scratch / "s", sim.manifest(4), io::Overwrite::refuse);
+  test::expect_error<InvalidInput>(
+      [&] { SessionRecorder::create(scratch / "s", sim.manifest(4), io::Overwrite::refuse); },
+      {"holds a session already", "--resume"});
+  test::expect_error<InvalidInput>([&] { SessionRecorder::resume(scratch / "none"); },
+                                   {"manifest.json: missing", "not a scanstation session"});
+}
+
+TEST(Session, ParametersRoundTripThroughJson) {
+  LaserScanParameters p;
+  p.line.fit = PeakFit::parabolic;
+  p.line.region = cv::Rect(1, 2, 30, 40);
+  p.outlier_radius = 0.75;
+  const json text = to_json(p);
+  const LaserScanParameters back = laser_scan_parameters_from_json(text, "p");
+  EXPECT_EQ(to_json(back), text);
+  json bad = text;
+  bad["saturation"] = 300;
+  test::expect_error<InvalidInput>([&] { laser_scan_parameters_from_json(bad, "manifest.json: parameters"); },
+                                   {"manifest.json: parameters.saturation", "1..255"});
+}
+
+}  // namespace
+}  // namespace scanstation::acquisition

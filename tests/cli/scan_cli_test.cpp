@@ -1,0 +1,255 @@
+// End-to-end tests of `scanstation scan` and `scanstation replay` on the
+// simulated station: sessions, progress, replay, resume after a stop and
+// after SIGTERM, a mesh file in its own coordinates, damaged sessions.
+#include "cli_support.h"
+#include "core/io/mesh_io.h"
+#include "sim/shapes.h"
+#include "test_support.h"
+
+#include <chrono>
+#include <csignal>
+#include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <thread>
+
+extern char** environ;
+
+namespace scanstation {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::Outcome;
+using test::ScratchFolder;
+using test::scanstation;
+using test::slurp;
+
+constexpr int kSteps = 10;
+
+std::size_t count_lines(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) n += line.find(part) != std::string::npos;
+  return n;
+}
+
+// A small simulated station (320×240, two lasers on the simulated chip),
+// optionally mirroring its line levels into `state_file`.
+fs::path write_station(const ScratchFolder& dir, const std::string& extra = "") {
+  const fs::path file = dir / "small.toml";
+  std::ofstream(file) << "[camera]\nbackend = \"sim\"\nwidth = 320\nheight = 240\n"
+                         "[[laser]]\nbackend = \"sim\"\n[[laser]]\nbackend = \"sim\"\n"
+                         "[turntable]\nbackend = \"sim\"\n"
+                      << extra;
+  return file;
+}
+
+// One complete scan of the built-in sphere, shared by the tests that read it.
+class ScannedSphere : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new ScratchFolder;
+    station_ = write_station(*dir_);
+    scan_ = new Outcome(scanstation("--progress json scan --station " + station_.string() + " --object sphere --steps " +
+                                    std::to_string(kSteps) + " -o " + session().string() + " --report " +
+                                    (*dir_ / "scan.json").string()));
+  }
+  static void TearDownTestSuite() {
+    delete scan_;
+    delete dir_;
+  }
+  static fs::path session() { return *dir_ / "session"; }
+  static std::string scan_args(const fs::path& out) {
+    return "scan --station " + station_.string() + " --object sphere --steps " + std::to_string(kSteps) + " -o " +
+           out.string();
+  }
+  static ScratchFolder* dir_;
+  static fs::path station_;
+  static Outcome* scan_;
+};
+ScratchFolder* ScannedSphere::dir_ = nullptr;
+fs::path ScannedSphere::station_;
+Outcome* ScannedSphere::scan_ = nullptr;
+
+TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
+  ASSERT_EQ(scan_->exit_code, 0) << scan_->err;
+  EXPECT_THAT(scan_->out, testing::HasSubstr("scanned " + std::to_string(kSteps) + " of " + std::to_string(kSteps)));
+  for (const char* file : {"manifest.json", "journal.jsonl", "points.ply", "report.json"})
+    EXPECT_TRUE(fs::exists(session() / file)) << file;
+  EXPECT_EQ(count_lines(slurp(session() / "journal.jsonl"), "\"event\":\"step\""), std::size_t(kSteps));
+  EXPECT_EQ(std::distance(fs::directory_iterator(session() / "frames"), fs::directory_iterator()), 3 * kSteps);
+  const json manifest = json::parse(slurp(session() / "manifest.json"));
+  EXPECT_EQ(manifest["rig"], "turntable");
+  EXPECT_EQ(manifest["geometry"]["lasers"].size(), 2u);
+  EXPECT_EQ(manifest["geometry"]["camera"]["width"], 320);
+  EXPECT_FALSE(manifest["software"]["version"].get<std::string>().empty());
+  const json report = json::parse(slurp(session() / "report.json"));
+  EXPECT_TRUE(report["complete"].get<bool>());
+  EXPECT_GT(report["points"].get<int>(), 1000);
+  const json command_report = json::parse(slurp(*dir_ / "scan.json"));
+  EXPECT_EQ(command_report["points"], report["points"]);
+}
+
+TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
+  std::vector<json> steps;
+  std::istringstream in(scan_->err);
+  for (std::string line; std::getline(in, line);) {
+    const json event = json::parse(line, nullptr, false);
+    if (!event.is_discarded() && event["event"] == "step") steps.push_back(event);
+  }
+  ASSERT_EQ(steps.size(), std::size_t(kSteps)) << scan_->err;
+  EXPECT_DOUBLE_EQ(steps[0]["angle_deg"].get<double>(), 0.0);
+  EXPECT_NEAR(steps[1]["angle_deg"].get<double>(), 360.0 / kSteps, 0.2);
+  for (std::size_t i = 1; i < steps.size(); ++i)
+    EXPECT_GE(steps[i]["points"].get<int>(), steps[i - 1]["points"].get<int>());
+  EXPECT_GT(steps.back()["points"].get<int>(), 1000);
+}
+
+TEST_F(ScannedSphere, ReplayIsByteIdenticalAndFasterThanTheCapture) {
+  ScratchFolder out;
+  const Outcome r = scanstation("replay " + session().string() + " -o " + out.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(out / "points.ply"), slurp(session() / "points.ply"));
+  const json report = json::parse(slurp(out / "report.json"));
+  std::printf("replay speed-up over the capture's time: %.1fx\n", report["replay_speedup"].get<double>());
+  EXPECT_TRUE(report["problems"].empty());
+  // New parameters: other points, recorded in the report.
+  const Outcome other = scanstation("replay " + session().string() + " -o " + (out / "cm").string() +
+                                    " --peak-fit centre_of_mass --outlier-radius 2");
+  ASSERT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_NE(slurp(out / "cm" / "points.ply"), slurp(session() / "points.ply"));
+  const json changed = json::parse(slurp(out / "cm" / "report.json"));
+  EXPECT_EQ(changed["parameters"]["peak_fit"], "centre_of_mass");
+  EXPECT_EQ(changed["parameters"]["outlier_radius"], 2.0);
+  // The default output folder is SESSION/replay; never overwritten without --force.
+  ScratchFolder copy;
+  fs::copy(session(), copy / "s", fs::copy_options::recursive);
+  EXPECT_EQ(scanstation("replay " + (copy / "s").string()).exit_code, 0);
+  EXPECT_EQ(slurp(copy / "s" / "replay" / "points.ply"), slurp(session() / "points.ply"));
+  const Outcome again = scanstation("replay " + (copy / "s").string());
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_THAT(again.err, testing::HasSubstr("--force"));
+}
+
+TEST_F(ScannedSphere, StoppedScanResumesToTheSamePoints) {
+  ScratchFolder dir;
+  const Outcome first = scanstation(scan_args(dir / "s") + " --stop-after 3");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_THAT(first.out, testing::HasSubstr("stopped after 3 of"));
+  EXPECT_THAT(first.out, testing::HasSubstr("--resume"));
+  EXPECT_FALSE(json::parse(slurp(dir / "s" / "report.json"))["complete"].get<bool>());
+  const Outcome refused = scanstation(scan_args(dir / "s"));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_THAT(refused.err, testing::HasSubstr("--resume"));
+  const Outcome second = scanstation("scan --resume --station " + station_.string() + " -o " + (dir / "s").string());
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_THAT(second.out, testing::HasSubstr("scanned " + std::to_string(kSteps)));
+  EXPECT_EQ(slurp(dir / "s" / "points.ply"), slurp(session() / "points.ply"));
+}
+
+TEST_F(ScannedSphere, ScanKilledBySigtermKeepsItsStepsAndResumes) {
+  ScratchFolder dir;
+  const fs::path lines = dir / "lines", folder = dir / "s";
+  const fs::path station = write_station(dir, "[sim]\nstate_file = \"" + lines.string() + "\"\n");
+  const std::string binary = SCANSTATION_BINARY, station_arg = station.string(), out = folder.string(),
+                    steps = std::to_string(kSteps);
+  const char* argv[] = {binary.c_str(), "-q",          "scan",          "--station", station_arg.c_str(),
+                        "--object",     "sphere",      "--steps",       steps.c_str(), "-o",
+                        out.c_str(),    nullptr};
+  pid_t child = 0;
+  ASSERT_EQ(posix_spawn(&child, binary.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  // Wait (bounded) for the first recorded step, then interrupt.
+  for (int i = 0; i < 3000 && count_lines(slurp(folder / "journal.jsonl"), "\"event\":\"step\"") < 1; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(child, SIGTERM);
+  int status = 0;
+  waitpid(child, &status, 0);
+  const std::size_t kept = count_lines(slurp(folder / "journal.jsonl"), "\"event\":\"step\"");
+  EXPECT_GE(kept, 1u);
+  if (WIFSIGNALED(status)) {
+    EXPECT_EQ(WTERMSIG(status), SIGTERM);
+    EXPECT_LT(kept, std::size_t(kSteps));
+  } else {
+    std::printf("the scan finished before SIGTERM arrived; resuming a complete session\n");
+  }
+  EXPECT_EQ(slurp(lines).substr(0, 2), "00") << "lasers off after the signal (levels LASER0, LASER1, STEP, DIR, EN)";
+  const Outcome resumed = scanstation("scan --resume --station " + station_arg + " -o " + out);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(slurp(folder / "points.ply"), slurp(session() / "points.ply"));
+}
+
+TEST_F(ScannedSphere, DamagedSessionIsReportedAndWhatIsIntactReplayed) {
+  ScratchFolder dir;
+  fs::copy(session(), dir / "s", fs::copy_options::recursive);
+  fs::remove(dir / "s" / "frames" / "step_0004_laser0.png");
+  std::string journal = slurp(dir / "s" / "journal.jsonl");
+  journal.resize(journal.rfind("{\"angle_deg\"") + 25);  // the last step's line cut mid-way
+  std::ofstream(dir / "s" / "journal.jsonl", std::ios::trunc | std::ios::binary) << journal;
+  const Outcome r = scanstation("replay " + (dir / "s").string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, testing::HasSubstr("step_0004_laser0.png: missing"));
+  EXPECT_THAT(r.err, testing::ContainsRegex("journal.jsonl:[0-9]+: truncated line"));
+  EXPECT_THAT(r.out, testing::HasSubstr("replayed " + std::to_string(kSteps - 1) + " of " + std::to_string(kSteps - 1)));
+  const json report = json::parse(slurp(dir / "out" / "report.json"));
+  EXPECT_FALSE(report["complete"].get<bool>());
+  EXPECT_EQ(report["problems"].size(), 2u);
+
+  json manifest = json::parse(slurp(dir / "s" / "manifest.json"));
+  manifest["geometry"]["camera"]["cx"] = manifest["geometry"]["camera"]["cx"].get<double>() + 3;
+  std::ofstream(dir / "s" / "manifest.json", std::ios::trunc) << manifest.dump(2);
+  const Outcome refused = scanstation("replay " + (dir / "s").string() + " -o " + (dir / "out2").string());
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_THAT(refused.err, testing::HasSubstr("manifest.json: geometry.camera does not match"));
+}
+
+TEST(ScanCli, MeshFileComesOutInItsOwnCoordinates) {
+  ScratchFolder dir;
+  // A sphere of radius 1.5 units centred at (10, 20, 5): the simulator scales
+  // it up to fit the rig, points.ply must come back in these units.
+  const double radius = 1.5;
+  const Eigen::RowVector3d centre(10, 20, 5);
+  TriangleMesh sphere = sim::icosphere(6);
+  sphere.vertices.positions = ((sphere.vertices.positions * radius).rowwise() + centre).eval();
+  io::write_mesh(dir / "ball.off", sphere);
+  const fs::path station = write_station(dir);
+  const Outcome r = scanstation("scan --station " + station.string() + " --object " + (dir / "ball.off").string() +
+                                " --steps 6 -o " + (dir / "s").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Eigen::MatrixX3d P = io::read_points(dir / "s" / "points.ply").positions;
+  ASSERT_GT(P.rows(), 1000);
+  const Eigen::VectorXd distance = ((P.rowwise() - centre).rowwise().norm().array() - radius).abs();
+  const double rms = std::sqrt(distance.squaredNorm() / static_cast<double>(P.rows()));
+  const double budget = 5e-4 * 2 * radius * std::sqrt(3.0);
+  std::printf("mesh file sphere (r %.1f units): RMS %.5f units (budget %.5f)\n", radius, rms, budget);
+  EXPECT_LE(rms, budget);
+  const json manifest = json::parse(slurp(dir / "s" / "manifest.json"));
+  EXPECT_GT(manifest["object"]["placement"]["scale"].get<double>(), 10.0);
+}
+
+TEST(ScanCli, UsbBoardStationScansToo) {
+  ScratchFolder dir;
+  std::ofstream(dir / "usb.toml") << "[camera]\nbackend = \"sim\"\nwidth = 320\nheight = 240\n"
+                                     "[[laser]]\nbackend = \"usb\"\nindex = 0\n[turntable]\nbackend = \"usb\"\n";
+  const Outcome r = scanstation("scan --backend sim --station " + (dir / "usb.toml").string() +
+                                " --object ellipsoid --steps 4 -o " + (dir / "s").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(slurp(dir / "s" / "report.json"));
+  EXPECT_EQ(report["points_per_laser"].size(), 1u);
+  EXPECT_GT(report["points"].get<int>(), 150);
+}
+
+TEST(ScanCli, StereoRigAndUnknownObjectsAreRefusedClearly) {
+  ScratchFolder dir;
+  const Outcome stereo = scanstation("scan --rig stereo -o " + (dir / "s").string());
+  EXPECT_EQ(stereo.exit_code, 1);
+  EXPECT_THAT(stereo.err, testing::HasSubstr("--rig stereo: not yet supported"));
+  const Outcome unknown = scanstation("scan --object teapot -o " + (dir / "t").string());
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_THAT(unknown.err, testing::HasSubstr("--object 'teapot': neither a built-in object"));
+  const Outcome none = scanstation("replay " + (dir / "nothing").string());
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_THAT(none.err, testing::HasSubstr("manifest.json: missing"));
+}
+
+}  // namespace
+}  // namespace scanstation
