@@ -1,7 +1,8 @@
-// Patch construction of the six-split (thesis §9.8) and the three-split
-// (§9.6) per macro triangle, from 20k to 1.3M triangles, against their floor
-// measured in the same run: Steps 1–3 alone (one cubic patch per triangle,
-// `macro_patches`).
+// Patch construction of the six-split (thesis §9.8), the three-split (§9.6)
+// and the adaptive two-split (§9.7) per macro triangle, from 20k to 1.3M
+// triangles, against their floor measured in the same run: Steps 1–3 alone
+// (one cubic patch per triangle, `macro_patches`); and the G¹ verification of
+// the six-split surface (every shared patch edge sampled at 9 points).
 //
 //   build/bench/smoothing_bench [--benchmark_filter=SixSplit]
 //
@@ -12,9 +13,11 @@
 #include "sim/shapes.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/mesh_edges.h"
+#include "smoothing/g1_verification.h"
 #include "smoothing/six_split.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/three_split.h"
+#include "smoothing/two_split.h"
 #include "smoothing/vertex_normals.h"
 
 #include <benchmark/benchmark.h>
@@ -88,6 +91,32 @@ void SixSplit(benchmark::State& state) {
   set_counters(state, in.mesh.face_count(), bytes);
 }
 
+// Thin triangles below 30°: about a tenth of the icosphere's macro triangles
+// are two-split.
+void TwoSplit(benchmark::State& state) {
+  const Input& in = input(int(state.range(0)));
+  const auto& V = in.mesh.vertices.positions;
+  std::size_t bytes = 0, two_split_triangles = 0;
+  for (auto _ : state) {
+    const std::vector<TwoSplitPair> pairs = two_split_pairs(V, in.mesh.faces, in.edges, 30.0);
+    const BezierSurface surface = two_split(V, in.mesh.faces, in.normals, in.edges, pairs);
+    bytes = surface.patches.size() * sizeof(CubicTriangle) + surface.macro.size() * sizeof(int);
+    two_split_triangles = 2 * pairs.size();
+    benchmark::DoNotOptimize(surface.patches.data());
+  }
+  set_counters(state, in.mesh.face_count(), bytes);
+  state.counters["two_split_fraction"] = double(two_split_triangles) / double(in.mesh.face_count());
+}
+
+void Verification(benchmark::State& state) {
+  const Input& in = input(int(state.range(0)));
+  const BezierSurface surface = six_split(in.mesh.vertices.positions, in.mesh.faces, in.normals, in.edges);
+  double angle = 0.0;
+  for (auto _ : state) angle = verify_g1(surface).max_normal_angle;
+  set_counters(state, in.mesh.face_count(), 0);
+  state.counters["max_normal_angle"] = angle;
+}
+
 void EdgeAdjacency(benchmark::State& state) {
   const Input& in = input(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(mesh_edges(in.mesh.faces).neighbour.data());
@@ -107,6 +136,8 @@ BENCHMARK(MacroPatches)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(SixSplit)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(ThreeSplit<false>)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(ThreeSplit<true>)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
+BENCHMARK(TwoSplit)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
+BENCHMARK(Verification)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(EdgeAdjacency)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(Tessellation)->DenseRange(5, 6)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

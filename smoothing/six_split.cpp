@@ -3,6 +3,7 @@
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <array>
 #include <utility>
@@ -135,43 +136,54 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   mean_row(3, Yg, Xa_there, Xb_there);
   half_edge_rows(A, rhs, 4, Ya, Xa, Xa_there, sa[A_corner], sa[outer_near_A], sa[AO_near_A], ta[BO_near_B], at_Z_a);
   half_edge_rows(A, rhs, 6, Yb, Xb, Xb_there, sb[B_corner], sb[outer_near_B], sb[BO_near_B], tb[AO_near_A], at_Z_b);
-  // Least displacement under A x = rhs: with A = L Q (Gram–Schmidt on the
-  // rows, twice, so Q's rows are orthonormal to rounding), δ = Qᵀ L⁻¹ (rhs −
-  // A x), refined once; no squared condition number. Dependent constraints (a
-  // vanishing diagonal of L, e.g. on symmetric configurations) go through the
-  // pseudo-inverse instead.
-  Eigen::Matrix<double, 8, unknowns> Q = A;
-  Eigen::Matrix<double, 8, 8> L = Eigen::Matrix<double, 8, 8>::Zero();
-  for (int i = 0; i < 8; ++i) {
-    for (int pass = 0; pass < 2; ++pass)
-      for (int j = 0; j < i; ++j) {
-        const double projection = Q.row(j).dot(Q.row(i));
-        L(i, j) += projection;
-        Q.row(i) -= projection * Q.row(j);
-      }
-    L(i, i) = Q.row(i).norm();
-    if (L(i, i) > 0.0) Q.row(i) /= L(i, i);
+  // Least displacement under A x = rhs. Rows 0, 2, 3 only say that Z, Y_f and
+  // Y_g are means of two other unknowns: they are met exactly by computing
+  // them as such from u = (Y_a, Y_b, X_a, X_b, X_a', X_b'), in which the
+  // displacement is |δu|²_M with M = I + ¼(three 2×2 blocks of ones), a
+  // constant metric. The five other rows become B u = c, and
+  // δu = M⁻¹Bᵀ(BM⁻¹Bᵀ)⁻¹(c − B u_old), refined once: a 5×5 Cholesky factor per
+  // macro edge. Dependent constraints (a vanishing pivot, e.g. on symmetric
+  // configurations) go through the pseudo-inverse instead.
+  static constexpr int rows[5] = {1, 4, 5, 6, 7};
+  static constexpr int free_unknown[6] = {Ya, Yb, Xa, Xb, Xa_there, Xb_there};
+  static constexpr int mean_of[6] = {Z, Z, Yf, Yf, Yg, Yg};  // the mean each free unknown enters
+  Eigen::Matrix<double, 5, 6> B;
+  Eigen::Matrix<double, 5, 3> c;
+  for (int r = 0; r < 5; ++r) {
+    for (int u = 0; u < 6; ++u) B(r, u) = A(rows[r], free_unknown[u]) + 0.5 * A(rows[r], mean_of[u]);
+    c.row(r) = rhs.row(rows[r]);
   }
+  // B M⁻¹, M⁻¹ block-diagonal with blocks [[5, −1], [−1, 5]]/6.
+  Eigen::Matrix<double, 5, 6> BM;
+  for (int u = 0; u < 6; u += 2) {
+    BM.col(u) = (5.0 * B.col(u) - B.col(u + 1)) / 6.0;
+    BM.col(u + 1) = (5.0 * B.col(u + 1) - B.col(u)) / 6.0;
+  }
+  const Eigen::Matrix<double, 5, 5> S = BM * B.transpose();
+  const Eigen::LLT<Eigen::Matrix<double, 5, 5>> llt(S);
+  Eigen::Matrix<double, 6, 3> u_old, u;
+  for (int k = 0; k < 6; ++k) u_old.row(k) = old.row(free_unknown[k]);
+  const auto expand = [](const Eigen::Matrix<double, 6, 3>& free) {
+    Points x;
+    for (int k = 0; k < 6; ++k) x.row(free_unknown[k]) = free.row(k);
+    x.row(Z) = (free.row(0) + free.row(1)) / 2.0;
+    x.row(Yf) = (free.row(2) + free.row(3)) / 2.0;
+    x.row(Yg) = (free.row(4) + free.row(5)) / 2.0;
+    return x;
+  };
   // Exact solution unless the constraints are (nearly) dependent, which
-  // shows as a vanishing diagonal of L or as control points thrown further
-  // than the macro edge is long; then the closest point of the well-posed
-  // part (pseudo-inverse, small singular values dropped): bounded, not G¹,
-  // and counted.
-  const Eigen::Matrix<double, 8, 1> diagonal = L.diagonal();
+  // shows as a vanishing pivot or as control points thrown further than the
+  // macro edge is long; then the closest point of the well-posed part
+  // (pseudo-inverse, small singular values dropped): bounded, not G¹, and
+  // counted.
   const double reach = 100.0 * (sb[B_corner] - sa[A_corner]).norm();
   Points x = old;
   bool met = false;
-  if (diagonal.minCoeff() > 1e-9 * diagonal.maxCoeff()) {
-    for (int step = 0; step < 2; ++step) {
-      // Small fixed sizes: coefficient-wise products and a hand-written
-      // forward substitution (Eigen's general kernels cost more here).
-      Eigen::Matrix<double, 8, 3> y = rhs - A.lazyProduct(x);
-      for (int i = 0; i < 8; ++i) {
-        for (int j = 0; j < i; ++j) y.row(i) -= L(i, j) * y.row(j);
-        y.row(i) /= L(i, i);
-      }
-      x += Q.transpose().lazyProduct(y);
-    }
+  const Eigen::Matrix<double, 5, 1> pivots = llt.matrixLLT().diagonal();
+  if (llt.info() == Eigen::Success && pivots.minCoeff() > 1e-7 * pivots.maxCoeff()) {
+    u = u_old;
+    for (int step = 0; step < 2; ++step) u += BM.transpose() * llt.solve(c - B * u);
+    x = expand(u);
     met = (x - old).rowwise().norm().maxCoeff() <= reach;
   }
   if (!met) {
@@ -215,12 +227,11 @@ void join_star(CubicTriangle* s) {
 
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, double tension) {
-  const std::vector<CubicTriangle> macro = macro_patches(V, F, N, tension);
   BezierSurface surface;
   surface.patches.resize(6 * F.rows());
   surface.macro.resize(6 * F.rows());
   for (int f = 0; f < F.rows(); ++f) {
-    split_in_six(macro[f], &surface.patches[6 * f]);
+    split_in_six(macro_patch(V, F, N, f, tension), &surface.patches[6 * f]);
     for (int j = 0; j < 6; ++j) surface.macro[6 * f + j] = f;
   }
   auto& P = surface.patches;
