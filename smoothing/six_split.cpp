@@ -3,10 +3,10 @@
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/QR>
+#include <algorithm>
 #include <array>
-#include <utility>
+#include <cmath>
 
 namespace scanstation {
 
@@ -23,40 +23,62 @@ constexpr int centre = control_index(1, 1, 1);
 constexpr double vertex_edge_ratio = 2.0 / 3.0;
 
 // Step 4: subdivision into six (s[2c] = (V_c, Z_c, O), s[2c+1] = (Z_c, V_c+1,
-// O)), and N on the edges from the vertices to O by Equation (9.14). All 60
-// control points are blossom values P[r_a, r_b, r_c] of seven domain points;
-// the first two de Casteljau levels are shared.
-void split_in_six(const CubicTriangle& macro, CubicTriangle* s) {
-  // Domain points: corners 0–2, edge midpoints 3–5 (edge c is 3 + c), centroid 6.
-  std::array<Barycentric, 7> r;
-  for (int c = 0; c < 3; ++c) {
-    r[c] = Barycentric::Unit(c);
-    r[3 + c] = (Barycentric::Unit(c) + Barycentric::Unit((c + 1) % 3)) / 2.0;
-  }
-  r[6] = Barycentric::Constant(1.0 / 3.0);
-  std::array<QuadraticNet, 7> first;
-  for (int a = 0; a < 7; ++a) first[a] = blossom_level(macro, r[a]);
-  std::array<std::array<LinearNet, 7>, 7> second;
-  for (int a = 0; a < 7; ++a)
-    for (int b = a; b < 7; ++b) second[a][b] = blossom_level(first[a], r[b]);
-  const auto value = [&](int a, int b, int c) {
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    return blossom_level(second[a][b], r[c]);
-  };
-  for (int j = 0; j < 6; ++j) {
-    const int c = j / 2;
-    const int A = j % 2 == 0 ? c : 3 + c, B = j % 2 == 0 ? 3 + c : (c + 1) % 3;
-    const int corner[3] = {A, B, 6};
-    for (int i = 0; i <= 3; ++i)
-      for (int k = 0; i + k <= 3; ++k) {
-        int args[3] = {0, 0, 0}, n = 0;
-        for (int m = 0; m < i; ++m) args[n++] = corner[0];
-        for (int m = 0; m < 3 - i - k; ++m) args[n++] = corner[1];
-        for (int m = 0; m < k; ++m) args[n++] = corner[2];
-        s[j][control_index(i, 3 - i - k, k)] = value(args[0], args[1], args[2]);
+// O)), and N on the edges from the vertices to O by Equation (9.14). The
+// control points are blossom values P[r_a, r_b, r_c] of the corners, edge
+// midpoints Z_c and centroid O, each a fixed combination of the ten macro
+// control points; only those read before Steps 5–7 set them are computed,
+// eight per macro edge c: Z_c, K = P[V_c, V_c, Z_c], P[V_c+1, V_c+1, Z_c],
+// Y = P[Z_c, Z_c, V_c], P[Z_c, Z_c, V_c+1], Y_f = P[Z_c, Z_c, O] and the
+// centres P[V_c, Z_c, O], P[Z_c, V_c+1, O].
+using SplitWeights = Eigen::Matrix<double, 24, 10, Eigen::RowMajor>;
+
+const SplitWeights& split_weights() {
+  static const SplitWeights weights = [] {
+    std::array<Barycentric, 7> r;  // corners 0–2, edge midpoints 3–5 (edge c is 3 + c), centroid 6
+    for (int c = 0; c < 3; ++c) {
+      r[c] = Barycentric::Unit(c);
+      r[3 + c] = (Barycentric::Unit(c) + Barycentric::Unit((c + 1) % 3)) / 2.0;
+    }
+    r[6] = Barycentric::Constant(1.0 / 3.0);
+    SplitWeights w;
+    for (int i = 0; i < 10; ++i) {
+      CubicTriangle unit;
+      for (Eigen::Vector3d& p : unit) p.setZero();
+      unit[i].x() = 1.0;
+      const auto blossom = [&](int a, int b, int c) {
+        return blossom_level(blossom_level(blossom_level(unit, r[a]), r[b]), r[c]).x();
+      };
+      for (int c = 0; c < 3; ++c) {
+        const int V = c, next = (c + 1) % 3, Zc = 3 + c, O = 6;
+        const int rows[8][3] = {{Zc, Zc, Zc}, {V, V, Zc},  {next, next, Zc}, {Zc, Zc, V},
+                                {Zc, Zc, next}, {Zc, Zc, O}, {V, Zc, O},        {Zc, next, O}};
+        for (int k = 0; k < 8; ++k) w(8 * c + k, i) = blossom(rows[k][0], rows[k][1], rows[k][2]);
       }
+    }
+    return w;
+  }();
+  return weights;
+}
+
+void split_in_six(const CubicTriangle& macro, CubicTriangle* s) {
+  Eigen::Matrix<double, 10, 3> net;
+  for (int i = 0; i < 10; ++i) net.row(i) = macro[i].transpose();
+  const Eigen::Matrix<double, 24, 3> value = split_weights().lazyProduct(net);
+  for (int c = 0; c < 3; ++c) {
+    const int next = (c + 1) % 3;
+    const auto point = [&](int k) -> Eigen::Vector3d { return value.row(8 * c + k).transpose(); };
+    CubicTriangle& a = s[2 * c];
+    CubicTriangle& b = s[2 * c + 1];
+    a[A_corner] = macro[control_index(c == 0 ? 3 : 0, c == 1 ? 3 : 0, c == 2 ? 3 : 0)];
+    b[B_corner] = macro[control_index(next == 0 ? 3 : 0, next == 1 ? 3 : 0, next == 2 ? 3 : 0)];
+    a[B_corner] = b[A_corner] = point(0);
+    a[outer_near_A] = point(1);
+    b[outer_near_B] = point(2);
+    a[outer_near_B] = point(3);
+    b[outer_near_A] = point(4);
+    a[BO_near_B] = b[AO_near_A] = point(5);
+    a[centre] = point(6);
+    b[centre] = point(7);
   }
   for (int c = 0; c < 3; ++c) {
     CubicTriangle& after = s[2 * c];
@@ -159,8 +181,36 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
     BM.col(u) = (5.0 * B.col(u) - B.col(u + 1)) / 6.0;
     BM.col(u + 1) = (5.0 * B.col(u + 1) - B.col(u)) / 6.0;
   }
-  const Eigen::Matrix<double, 5, 5> S = BM * B.transpose();
-  const Eigen::LLT<Eigen::Matrix<double, 5, 5>> llt(S);
+  // S = B M⁻¹ Bᵀ and its Cholesky factor L, by hand: Eigen's general
+  // kernels cost more than the arithmetic at this size.
+  double L[5][5] = {};
+  bool positive = true;
+  double largest_pivot = 0.0, smallest_pivot = INFINITY;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double sum = BM.row(i).dot(B.row(j));
+      for (int k = 0; k < j; ++k) sum -= L[i][k] * L[j][k];
+      if (i == j) {
+        positive = positive && sum > 0.0;
+        L[i][i] = positive ? std::sqrt(sum) : 1.0;
+        largest_pivot = std::max(largest_pivot, L[i][i]);
+        smallest_pivot = std::min(smallest_pivot, L[i][i]);
+      } else {
+        L[i][j] = sum / L[j][j];
+      }
+    }
+  // δu = M⁻¹Bᵀ S⁻¹ r by forward and back substitution.
+  const auto correction = [&](Eigen::Matrix<double, 5, 3> r) -> Eigen::Matrix<double, 6, 3> {
+    for (int i = 0; i < 5; ++i) {
+      for (int k = 0; k < i; ++k) r.row(i) -= L[i][k] * r.row(k);
+      r.row(i) /= L[i][i];
+    }
+    for (int i = 4; i >= 0; --i) {
+      for (int k = i + 1; k < 5; ++k) r.row(i) -= L[k][i] * r.row(k);
+      r.row(i) /= L[i][i];
+    }
+    return BM.transpose().lazyProduct(r);
+  };
   Eigen::Matrix<double, 6, 3> u_old, u;
   for (int k = 0; k < 6; ++k) u_old.row(k) = old.row(free_unknown[k]);
   const auto expand = [](const Eigen::Matrix<double, 6, 3>& free) {
@@ -179,10 +229,9 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   const double reach = 100.0 * (sb[B_corner] - sa[A_corner]).norm();
   Points x = old;
   bool met = false;
-  const Eigen::Matrix<double, 5, 1> pivots = llt.matrixLLT().diagonal();
-  if (llt.info() == Eigen::Success && pivots.minCoeff() > 1e-7 * pivots.maxCoeff()) {
+  if (positive && smallest_pivot > 1e-7 * largest_pivot) {
     u = u_old;
-    for (int step = 0; step < 2; ++step) u += BM.transpose() * llt.solve(c - B * u);
+    for (int step = 0; step < 2; ++step) u += correction(c - B.lazyProduct(u));
     x = expand(u);
     met = (x - old).rowwise().norm().maxCoeff() <= reach;
   }
