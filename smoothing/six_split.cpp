@@ -162,10 +162,10 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   // Y_g are means of two other unknowns: they are met exactly by computing
   // them as such from u = (Y_a, Y_b, X_a, X_b, X_a', X_b'), in which the
   // displacement is |δu|²_M with M = I + ¼(three 2×2 blocks of ones), a
-  // constant metric. The five other rows become B u = c, and
-  // δu = M⁻¹Bᵀ(BM⁻¹Bᵀ)⁻¹(c − B u_old), refined once: a 5×5 Cholesky factor per
-  // macro edge. Dependent constraints (a vanishing pivot, e.g. on symmetric
-  // configurations) go through the pseudo-inverse instead.
+  // constant metric. The five other rows become B u = c, solved for the
+  // least M-displacement, refined once. Dependent constraints (a vanishing
+  // pivot, e.g. on symmetric configurations) go through the pseudo-inverse
+  // instead.
   static constexpr int rows[5] = {1, 4, 5, 6, 7};
   static constexpr int free_unknown[6] = {Ya, Yb, Xa, Xb, Xa_there, Xb_there};
   static constexpr int mean_of[6] = {Z, Z, Yf, Yf, Yg, Yg};  // the mean each free unknown enters
@@ -175,41 +175,45 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
     for (int u = 0; u < 6; ++u) B(r, u) = A(rows[r], free_unknown[u]) + 0.5 * A(rows[r], mean_of[u]);
     c.row(r) = rhs.row(rows[r]);
   }
-  // B M⁻¹, M⁻¹ block-diagonal with blocks [[5, −1], [−1, 5]]/6.
-  Eigen::Matrix<double, 5, 6> BM;
-  for (int u = 0; u < 6; u += 2) {
-    BM.col(u) = (5.0 * B.col(u) - B.col(u + 1)) / 6.0;
-    BM.col(u + 1) = (5.0 * B.col(u + 1) - B.col(u)) / 6.0;
-  }
-  // S = B M⁻¹ Bᵀ and its Cholesky factor L, by hand: Eigen's general
+  // With δu = M^-½ w the problem is min |w| under C w = r, C = B M^-½ (M^-½
+  // block-diagonal with blocks [[p, q], [q, p]]); C = L Q by Gram–Schmidt on
+  // the rows, twice, so Q's rows are orthonormal to rounding and the
+  // condition number is not squared: w = Qᵀ L⁻¹ r. By hand: Eigen's general
   // kernels cost more than the arithmetic at this size.
+  const double p = (std::sqrt(2.0 / 3.0) + 1.0) / 2.0, q = (std::sqrt(2.0 / 3.0) - 1.0) / 2.0;
+  Eigen::Matrix<double, 5, 6, Eigen::RowMajor> Q;
+  for (int k = 0; k < 6; k += 2) {
+    Q.col(k) = p * B.col(k) + q * B.col(k + 1);
+    Q.col(k + 1) = q * B.col(k) + p * B.col(k + 1);
+  }
   double L[5][5] = {};
-  bool positive = true;
-  double largest_pivot = 0.0, smallest_pivot = INFINITY;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j <= i; ++j) {
-      double sum = BM.row(i).dot(B.row(j));
-      for (int k = 0; k < j; ++k) sum -= L[i][k] * L[j][k];
-      if (i == j) {
-        positive = positive && sum > 0.0;
-        L[i][i] = positive ? std::sqrt(sum) : 1.0;
-        largest_pivot = std::max(largest_pivot, L[i][i]);
-        smallest_pivot = std::min(smallest_pivot, L[i][i]);
-      } else {
-        L[i][j] = sum / L[j][j];
+  for (int i = 0; i < 5; ++i) {
+    for (int pass = 0; pass < 2; ++pass)
+      for (int j = 0; j < i; ++j) {
+        const double projection = Q.row(j).dot(Q.row(i));
+        L[i][j] += projection;
+        Q.row(i) -= projection * Q.row(j);
       }
-    }
-  // δu = M⁻¹Bᵀ S⁻¹ r by forward and back substitution.
+    L[i][i] = Q.row(i).norm();
+    if (L[i][i] > 0.0) Q.row(i) /= L[i][i];
+  }
+  double largest_pivot = 0.0, smallest_pivot = INFINITY;
+  for (int i = 0; i < 5; ++i) {
+    largest_pivot = std::max(largest_pivot, L[i][i]);
+    smallest_pivot = std::min(smallest_pivot, L[i][i]);
+  }
   const auto correction = [&](Eigen::Matrix<double, 5, 3> r) -> Eigen::Matrix<double, 6, 3> {
     for (int i = 0; i < 5; ++i) {
       for (int k = 0; k < i; ++k) r.row(i) -= L[i][k] * r.row(k);
       r.row(i) /= L[i][i];
     }
-    for (int i = 4; i >= 0; --i) {
-      for (int k = i + 1; k < 5; ++k) r.row(i) -= L[k][i] * r.row(k);
-      r.row(i) /= L[i][i];
+    const Eigen::Matrix<double, 6, 3> w = Q.transpose().lazyProduct(r);
+    Eigen::Matrix<double, 6, 3> delta;
+    for (int k = 0; k < 6; k += 2) {
+      delta.row(k) = p * w.row(k) + q * w.row(k + 1);
+      delta.row(k + 1) = q * w.row(k) + p * w.row(k + 1);
     }
-    return BM.transpose().lazyProduct(r);
+    return delta;
   };
   Eigen::Matrix<double, 6, 3> u_old, u;
   for (int k = 0; k < 6; ++k) u_old.row(k) = old.row(free_unknown[k]);
@@ -229,7 +233,7 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   const double reach = 100.0 * (sb[B_corner] - sa[A_corner]).norm();
   Points x = old;
   bool met = false;
-  if (positive && smallest_pivot > 1e-7 * largest_pivot) {
+  if (smallest_pivot > 1e-9 * largest_pivot) {
     u = u_old;
     for (int step = 0; step < 2; ++step) u += correction(c - B.lazyProduct(u));
     x = expand(u);
