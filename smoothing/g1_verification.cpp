@@ -37,7 +37,7 @@ struct EdgeDerivatives {
   }
 };
 
-Eigen::Vector3d quadratic(const Eigen::Vector3d* b, double s) {
+inline Eigen::Vector3d quadratic(const Eigen::Vector3d* b, double s) {
   const double t = 1.0 - s;
   return (t * t) * b[0] + (2.0 * s * t) * b[1] + (s * s) * b[2];
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 namespace scanstation {
 
@@ -29,6 +30,21 @@ struct HalfEdge {
   std::uint32_t id;
 };
 
+// Least significant digit radix sort on the key, 16 bits a pass (linear
+// time; stable, so equal keys keep the order of their ids).
+void sort_by_key(std::vector<HalfEdge>& halves) {
+  std::vector<HalfEdge> buffer(halves.size());
+  std::vector<std::size_t> count(1 << 16);
+  for (int shift = 0; shift < 64; shift += 16) {
+    std::fill(count.begin(), count.end(), 0);
+    for (const HalfEdge& h : halves) ++count[(h.key >> shift) & 0xffff];
+    std::size_t offset = 0;
+    for (std::size_t& c : count) offset += std::exchange(c, offset);
+    for (const HalfEdge& h : halves) buffer[count[(h.key >> shift) & 0xffff]++] = h;
+    halves.swap(buffer);
+  }
+}
+
 }  // namespace
 
 PatchAdjacency patch_adjacency(const BezierSurface& surface) {
@@ -46,9 +62,7 @@ PatchAdjacency patch_adjacency(const BezierSurface& surface) {
     halves[id] = {(from + to) ^ ((from ^ to) * 0x9e3779b97f4a7c15ull >> 17), id};
   }
   corner_hash = {};
-  std::sort(halves.begin(), halves.end(), [](const HalfEdge& a, const HalfEdge& b) {
-    return a.key != b.key ? a.key < b.key : a.id < b.id;
-  });
+  sort_by_key(halves);
   constexpr std::uint32_t none = ~0u;
   std::vector<std::uint32_t> partner(count, none);
   const auto from = [&](std::uint32_t id) -> const Eigen::Vector3d& { return patch_corner(patches[id / 3], id % 3); };

@@ -3,6 +3,7 @@
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -41,9 +42,8 @@ double smallest_angle(const Vector3& a, const Vector3& b, const Vector3& c) {
 
 // An outer edge of a pair, between a two-split micro triangle and the
 // three-split neighbour `other` (three-split micro triangle k of a face lies
-// on its edge k, b300 → b030). In other's direction: M0..M3 on the edge,
-// R0..R2 other's next row, L0..L2 the pair's next row; f, g the constant
-// coefficients of Equation (9.7).
+// on its edge k, b300 → b030): M0..M3 on the edge in other's direction; f, g
+// the constant coefficients of Equation (9.7).
 struct OuterEdge {
   CubicTriangle* other;
   Eigen::Vector2d fg;
@@ -63,8 +63,8 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vector3& n) {
 // → A (vertex i to vertex i+1, as the neighbours run them), `neighbour[i]`
 // the macro patch across edge i with that edge as its local edge c[i],
 // pair_macro P and Q (edges 0, 1 in P), and inner[i] the pair's point next to
-// vertex i on its inner edge (K_A, W_C,
-// K_B, W_D, first as subdivided). Per outer edge, E, F, G = (1, f, g)
+// vertex i on its inner edge (K_A, W_C, K_B, W_D, first as subdivided), in
+// the tangent plane of normal[i]. Per outer edge, E, F, G = (1, f, g)
 // constant, fitted to the subdivided points at both ends; then the two
 // Step-2 points of each outer edge and the four inner points move least (in
 // their vertices' tangent planes) so that both ends meet (9.7a, e) exactly:
@@ -72,8 +72,8 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vector3& n) {
 //   (1 + g/3)(K0 − V0) + f(L0 − V0) + (g/3)(O0 − V0) = 0 at the start and
 //   −(1 + f + 2g/3)(K3 − V3) + f(L2 − V3) + (g/3)(O3 − V3) = 0 at the end,
 // sixteen linear equations in twenty-four tangent coordinates. Updates the
-// macro patches (edge points, then Step 3 again) and `inner`; returns false
-// when the coefficients have the wrong signs or the system is dependent.
+// macro patches (edge points, then Step 3 again), `inner` and `fg`; returns
+// false when the system is dependent.
 bool meet_ratio_conditions(const std::array<CubicTriangle*, 4>& neighbour, const std::array<int, 4>& c,
                            const std::array<CubicTriangle*, 2>& pair_macro, std::array<Vector3, 4>& inner,
                            const std::array<Vector3, 4>& normal, std::array<Eigen::Vector2d, 4>& fg) {

@@ -30,28 +30,31 @@ struct TwoSplitPair {
 std::vector<TwoSplitPair> two_split_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                                           const MeshEdges& edges, double min_angle_degrees);
 
-/// V, F, N, edges as three_split; pairs from two_split_pairs (non-adjacent).
-/// Patches: 2 per paired macro triangle, 3 per other one, in face order; for a
-/// pair (P = (A, B, C) split on A → B, Q = (B, A, D)) they are (A, Z, C),
-/// (Z, B, C) and (B, Z, D), (Z, A, D), Z = P(½, ½, 0), the three-split ones as
-/// in three_split.
+/// V, F, N, edges as three_split; pairs from two_split_pairs (candidates).
+/// Patches: 2 per two-split macro triangle, 3 per other one, in face order;
+/// for a pair (P = (A, B, C) split on A → B, Q = (B, A, D)) they are
+/// (A, Z, C), (Z, B, C) and (B, Z, D), (Z, A, D), Z = P(½, ½, 0); the
+/// three-split ones as in three_split.
 ///
-/// Steps 1–3 (macro_patches). Step 4 of §9.7: subdivision at Z. Then, because
-/// the thesis' constant coefficients on all four inner edges (9.6) force
-/// Y_i = Z (a singular point) and its outer edges need the ratio condition of
-/// (9.7) at both ends, which "an algorithm given by [Farin, 83]" arranges by
-/// moving the control points next to the vertices:
-///  - outer edges (a two-split and a three-split micro triangle): E, F, G
-///    constant (Equation 9.7 with e0=e1=e2 etc.); the four points next to A,
-///    B, C, D on the inner edges are the unknowns that meet the ratio
-///    condition at all eight ends at once (a linear system in 1/f, g/f);
-///  - Step 5, the nine unknowns X_i, Y_i, Z of Figure 9.6: E, F, G constant on
-///    the inner edge C–Z (Equations 9.6a, b), linear on A–Z, B–Z, D–Z
-///    (Equation 9.3) with the coefficients at Z implied by the star at Z
-///    (9.6b on C–Z and one relation fitted to the subdivided points);
+/// Steps 1–3 (macro_patches). The thesis' constant coefficients on all four
+/// inner edges (9.6) force Y_i = Z (a singular point), and its outer edges
+/// need the ratio condition of (9.7) at both ends, which "an algorithm given
+/// by [Farin, 83]" arranges by moving the points next to the vertices. So:
+///  - outer edges (a two-split against a three-split micro triangle): E, F, G
+///    constant (Equation 9.7), (1, f, g) fitted to the subdivided points; the
+///    outer edges' Step-2 points and the points next to A, B, C, D on the
+///    inner edges move least (in the tangent planes) to meet the ratio
+///    condition at all eight ends;
+///  - Step 4 of §9.7: subdivision at Z;
+///  - Step 5, the nine unknowns X_i, Y_i, Z of Figure 9.6: E, F, G constant
+///    on C–Z (Equations 9.6a, b), linear on A–Z, B–Z, D–Z (Equation 9.3) with
+///    the coefficients at Z implied by the star at Z ((9.6b) on C–Z and one
+///    relation fitted to the subdivided points);
 ///  - R1 of each outer edge from (9.7b) − (9.7a);
-///  - the three-split triangles: Steps 5 and 6 of §9.6 on the remaining edges.
-/// dependent_edges counts macro edges and pairs whose equations were dependent.
+///  - the three-split triangles: Steps 5 and 6 of §9.6 on the other edges.
+/// A candidate whose inner edges would violate the G¹ orientation (f, g of
+/// opposite signs at an end) is left to the three-split. dependent_edges
+/// counts macro edges and pairs whose equations were dependent.
 BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, const std::vector<TwoSplitPair>& pairs,
                         const ThreeSplitOptions& options = {});

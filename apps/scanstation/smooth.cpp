@@ -174,9 +174,13 @@ class SmoothCommand final : public Command {
                 g1.max_normal_angle, adjusted.size());
     if (scheme_ != "six-split") context.report["result"]["ratio"] = ratio_;
     if (scheme_ == "adaptive-two-split") {
+      // Candidates whose pair would violate the G¹ orientation stay three-split.
+      const std::size_t two_split_triangles = 3 * std::size_t(mesh.face_count()) - surface.patches.size();
       context.report["result"]["min_angle"] = min_angle_;
-      context.report["result"]["two_split_triangles"] = 2 * pairs.size();
-      std::printf("%zu thin macro triangle(s) and their neighbours two-split\n", pairs.size());
+      context.report["result"]["two_split_candidates"] = 2 * pairs.size();
+      context.report["result"]["two_split_triangles"] = two_split_triangles;
+      std::printf("%zu macro triangle(s) two-split (%zu candidates below %g°)\n", two_split_triangles, 2 * pairs.size(),
+                  min_angle_);
     }
     if (violations > 0 || surface.dependent_edges > 0)
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
