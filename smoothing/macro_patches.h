@@ -20,6 +20,15 @@ namespace scanstation {
 std::vector<CubicTriangle> macro_patches(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                                          const Eigen::MatrixX3d& N, double tension = 1.0 / 3.0);
 
+/// The patch of triangle f alone (macro_patches()[f]), for schemes that split
+/// it at once instead of keeping all macro patches.
+CubicTriangle macro_patch(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
+                          Eigen::Index f, double tension);
+
+/// Step 3 alone: b111 from the corners and the six edge points (for schemes
+/// that move edge points after Step 2).
+void set_centre_point(CubicTriangle& patch);
+
 /// The Step-2 point of the edge from a (unit normal n) towards b:
 /// a + t(b* − a), b* the projection of b onto the tangent plane at a.
 inline Eigen::Vector3d edge_control_point(const Eigen::Vector3d& a, const Eigen::Vector3d& n,

@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
 
 namespace scanstation {
 
@@ -36,20 +39,34 @@ Oscillation oscillation(const BezierSurface& surface, const Eigen::MatrixX3d& V,
   Oscillation result;
   std::size_t count = 0;
   const int n = samples_per_edge;
+  // The Bernstein weights 3!/(i!j!k!) u^i v^j w^k of the grid points, once:
+  // a sample is then one row of weights times the ten control points.
+  std::vector<std::array<double, 10>> weights;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; i + j <= n; ++j) {
+      const double u = double(n - i - j) / n, v = double(i) / n, w = double(j) / n;
+      std::array<double, 10>& row = weights.emplace_back();
+      for (int a = 0; a <= 3; ++a)
+        for (int b = 0; a + b <= 3; ++b) {
+          const int c = 3 - a - b;
+          const double multinomial = 6.0 / (std::tgamma(a + 1) * std::tgamma(b + 1) * std::tgamma(c + 1));
+          row[control_index(a, b, c)] = multinomial * std::pow(u, a) * std::pow(v, b) * std::pow(w, c);
+        }
+    }
   for (std::size_t p = 0; p < surface.patches.size(); ++p) {
     const int f = surface.macro[p];
     const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
     const double edge_length = ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
     if (!(edge_length > 0.0)) continue;
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; i + j <= n; ++j) {
-        const Barycentric uvw(double(n - i - j) / n, double(i) / n, double(j) / n);
-        const Eigen::Vector3d x = evaluate(surface.patches[p], uvw);
-        const double relative = (x - closest_on_triangle(x, a, b, c)).norm() / edge_length;
-        result.max_relative = std::max(result.max_relative, relative);
-        result.mean_relative += relative;
-        ++count;
-      }
+    const CubicTriangle& patch = surface.patches[p];
+    for (const std::array<double, 10>& row : weights) {
+      Eigen::Vector3d x = row[0] * patch[0];
+      for (int k = 1; k < 10; ++k) x += row[k] * patch[k];
+      const double relative = (x - closest_on_triangle(x, a, b, c)).norm() / edge_length;
+      result.max_relative = std::max(result.max_relative, relative);
+      result.mean_relative += relative;
+      ++count;
+    }
   }
   if (count > 0) result.mean_relative /= double(count);
   return result;

@@ -1,54 +1,97 @@
 #include "smoothing/patch_adjacency.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
-#include <unordered_map>
+#include <utility>
 
 namespace scanstation {
 
 namespace {
 
-struct CornerPair {
-  double coordinates[6];
-  bool operator==(const CornerPair& other) const {
-    return std::memcmp(coordinates, other.coordinates, sizeof coordinates) == 0;
+std::uint64_t point_hash(const Eigen::Vector3d& p) {
+  std::uint64_t hash = 1469598103934665603ull;
+  for (int i = 0; i < 3; ++i) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &p[i], sizeof bits);
+    hash = (hash ^ bits) * 1099511628211ull;
+    hash ^= hash >> 29;
   }
+  return hash;
+}
+
+bool same(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+}
+
+// One patch edge: a hash of its two corners in either order, and 3·patch + edge.
+struct HalfEdge {
+  std::uint64_t key;
+  std::uint32_t id;
 };
 
-struct CornerPairHash {
-  std::size_t operator()(const CornerPair& key) const {
-    std::size_t hash = 1469598103934665603ull;
-    for (const double x : key.coordinates) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      hash = (hash ^ bits) * 1099511628211ull;
-    }
-    return hash;
+// Least significant digit radix sort on the key, 16 bits a pass (linear
+// time; stable, so equal keys keep the order of their ids).
+void sort_by_key(std::vector<HalfEdge>& halves) {
+  std::vector<HalfEdge> buffer(halves.size());
+  std::vector<std::size_t> count(1 << 16);
+  for (int shift = 0; shift < 64; shift += 16) {
+    std::fill(count.begin(), count.end(), 0);
+    for (const HalfEdge& h : halves) ++count[(h.key >> shift) & 0xffff];
+    std::size_t offset = 0;
+    for (std::size_t& c : count) offset += std::exchange(c, offset);
+    for (const HalfEdge& h : halves) buffer[count[(h.key >> shift) & 0xffff]++] = h;
+    halves.swap(buffer);
   }
-};
-
-CornerPair directed(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  return {{from.x(), from.y(), from.z(), to.x(), to.y(), to.z()}};
 }
 
 }  // namespace
 
 PatchAdjacency patch_adjacency(const BezierSurface& surface) {
-  std::unordered_map<CornerPair, std::pair<int, int>, CornerPairHash> open;
-  open.reserve(surface.patches.size() * 2);
-  PatchAdjacency adjacency;
-  for (int p = 0; p < static_cast<int>(surface.patches.size()); ++p)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& from = patch_corner(surface.patches[p], k);
-      const Eigen::Vector3d& to = patch_corner(surface.patches[p], (k + 1) % 3);
-      const auto partner = open.find(directed(to, from));
-      if (partner != open.end()) {
-        adjacency.pairs.push_back({partner->second.first, partner->second.second, p, k});
-        open.erase(partner);
-      } else {
-        open.emplace(directed(from, to), std::make_pair(p, k));
+  // Sorting by a hash of the unordered corner pair brings partners together;
+  // the corners are then compared bit for bit. partner[3p + k] is the partner
+  // edge's id (or none), so the pairs come out in a fixed order: by the later
+  // edge, as a scan over the patches would meet them.
+  const auto& patches = surface.patches;
+  const std::uint32_t count = static_cast<std::uint32_t>(3 * patches.size());
+  std::vector<HalfEdge> halves(count);
+  std::vector<std::uint64_t> corner_hash(count);
+  for (std::uint32_t id = 0; id < count; ++id) corner_hash[id] = point_hash(patch_corner(patches[id / 3], id % 3));
+  for (std::uint32_t id = 0; id < count; ++id) {
+    const std::uint64_t from = corner_hash[id], to = corner_hash[id - id % 3 + (id % 3 + 1) % 3];
+    halves[id] = {(from + to) ^ ((from ^ to) * 0x9e3779b97f4a7c15ull >> 17), id};
+  }
+  corner_hash = {};
+  sort_by_key(halves);
+  constexpr std::uint32_t none = ~0u;
+  std::vector<std::uint32_t> partner(count, none);
+  const auto from = [&](std::uint32_t id) -> const Eigen::Vector3d& { return patch_corner(patches[id / 3], id % 3); };
+  const auto to = [&](std::uint32_t id) -> const Eigen::Vector3d& {
+    return patch_corner(patches[id / 3], (id % 3 + 1) % 3);
+  };
+  for (std::size_t begin = 0, end = 0; begin < halves.size(); begin = end) {
+    while (end < halves.size() && halves[end].key == halves[begin].key) ++end;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t a = halves[i].id;
+      if (partner[a] != none) continue;
+      for (std::size_t j = i + 1; j < end; ++j) {
+        const std::uint32_t b = halves[j].id;
+        if (partner[b] == none && same(from(a), to(b)) && same(to(a), from(b))) {
+          partner[a] = b;
+          partner[b] = a;
+          break;
+        }
       }
     }
-  adjacency.unmatched = open.size();
+  }
+  PatchAdjacency adjacency;
+  adjacency.pairs.reserve(count / 2);
+  for (std::uint32_t id = 0; id < count; ++id) {
+    if (partner[id] == none)
+      ++adjacency.unmatched;
+    else if (partner[id] < id)
+      adjacency.pairs.push_back({int(partner[id] / 3), int(partner[id] % 3), int(id / 3), int(id % 3)});
+  }
   return adjacency;
 }
 

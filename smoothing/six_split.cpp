@@ -4,8 +4,9 @@
 #include "smoothing/tangent_plane_condition.h"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <array>
-#include <utility>
+#include <cmath>
 
 namespace scanstation {
 
@@ -22,40 +23,62 @@ constexpr int centre = control_index(1, 1, 1);
 constexpr double vertex_edge_ratio = 2.0 / 3.0;
 
 // Step 4: subdivision into six (s[2c] = (V_c, Z_c, O), s[2c+1] = (Z_c, V_c+1,
-// O)), and N on the edges from the vertices to O by Equation (9.14). All 60
-// control points are blossom values P[r_a, r_b, r_c] of seven domain points;
-// the first two de Casteljau levels are shared.
-void split_in_six(const CubicTriangle& macro, CubicTriangle* s) {
-  // Domain points: corners 0–2, edge midpoints 3–5 (edge c is 3 + c), centroid 6.
-  std::array<Barycentric, 7> r;
-  for (int c = 0; c < 3; ++c) {
-    r[c] = Barycentric::Unit(c);
-    r[3 + c] = (Barycentric::Unit(c) + Barycentric::Unit((c + 1) % 3)) / 2.0;
-  }
-  r[6] = Barycentric::Constant(1.0 / 3.0);
-  std::array<QuadraticNet, 7> first;
-  for (int a = 0; a < 7; ++a) first[a] = blossom_level(macro, r[a]);
-  std::array<std::array<LinearNet, 7>, 7> second;
-  for (int a = 0; a < 7; ++a)
-    for (int b = a; b < 7; ++b) second[a][b] = blossom_level(first[a], r[b]);
-  const auto value = [&](int a, int b, int c) {
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    return blossom_level(second[a][b], r[c]);
-  };
-  for (int j = 0; j < 6; ++j) {
-    const int c = j / 2;
-    const int A = j % 2 == 0 ? c : 3 + c, B = j % 2 == 0 ? 3 + c : (c + 1) % 3;
-    const int corner[3] = {A, B, 6};
-    for (int i = 0; i <= 3; ++i)
-      for (int k = 0; i + k <= 3; ++k) {
-        int args[3] = {0, 0, 0}, n = 0;
-        for (int m = 0; m < i; ++m) args[n++] = corner[0];
-        for (int m = 0; m < 3 - i - k; ++m) args[n++] = corner[1];
-        for (int m = 0; m < k; ++m) args[n++] = corner[2];
-        s[j][control_index(i, 3 - i - k, k)] = value(args[0], args[1], args[2]);
+// O)), and N on the edges from the vertices to O by Equation (9.14). The
+// control points are blossom values P[r_a, r_b, r_c] of the corners, edge
+// midpoints Z_c and centroid O, each a fixed combination of the ten macro
+// control points; only those read before Steps 5–7 set them are computed,
+// eight per macro edge c: Z_c, K = P[V_c, V_c, Z_c], P[V_c+1, V_c+1, Z_c],
+// Y = P[Z_c, Z_c, V_c], P[Z_c, Z_c, V_c+1], Y_f = P[Z_c, Z_c, O] and the
+// centres P[V_c, Z_c, O], P[Z_c, V_c+1, O].
+using SplitWeights = Eigen::Matrix<double, 24, 10, Eigen::RowMajor>;
+
+const SplitWeights& split_weights() {
+  static const SplitWeights weights = [] {
+    std::array<Barycentric, 7> r;  // corners 0–2, edge midpoints 3–5 (edge c is 3 + c), centroid 6
+    for (int c = 0; c < 3; ++c) {
+      r[c] = Barycentric::Unit(c);
+      r[3 + c] = (Barycentric::Unit(c) + Barycentric::Unit((c + 1) % 3)) / 2.0;
+    }
+    r[6] = Barycentric::Constant(1.0 / 3.0);
+    SplitWeights w;
+    for (int i = 0; i < 10; ++i) {
+      CubicTriangle unit;
+      for (Eigen::Vector3d& p : unit) p.setZero();
+      unit[i].x() = 1.0;
+      const auto blossom = [&](int a, int b, int c) {
+        return blossom_level(blossom_level(blossom_level(unit, r[a]), r[b]), r[c]).x();
+      };
+      for (int c = 0; c < 3; ++c) {
+        const int V = c, next = (c + 1) % 3, Zc = 3 + c, O = 6;
+        const int rows[8][3] = {{Zc, Zc, Zc}, {V, V, Zc},  {next, next, Zc}, {Zc, Zc, V},
+                                {Zc, Zc, next}, {Zc, Zc, O}, {V, Zc, O},        {Zc, next, O}};
+        for (int k = 0; k < 8; ++k) w(8 * c + k, i) = blossom(rows[k][0], rows[k][1], rows[k][2]);
       }
+    }
+    return w;
+  }();
+  return weights;
+}
+
+void split_in_six(const CubicTriangle& macro, CubicTriangle* s) {
+  Eigen::Matrix<double, 10, 3> net;
+  for (int i = 0; i < 10; ++i) net.row(i) = macro[i].transpose();
+  const Eigen::Matrix<double, 24, 3> value = split_weights().lazyProduct(net);
+  for (int c = 0; c < 3; ++c) {
+    const int next = (c + 1) % 3;
+    const auto point = [&](int k) -> Eigen::Vector3d { return value.row(8 * c + k).transpose(); };
+    CubicTriangle& a = s[2 * c];
+    CubicTriangle& b = s[2 * c + 1];
+    a[A_corner] = macro[control_index(c == 0 ? 3 : 0, c == 1 ? 3 : 0, c == 2 ? 3 : 0)];
+    b[B_corner] = macro[control_index(next == 0 ? 3 : 0, next == 1 ? 3 : 0, next == 2 ? 3 : 0)];
+    a[B_corner] = b[A_corner] = point(0);
+    a[outer_near_A] = point(1);
+    b[outer_near_B] = point(2);
+    a[outer_near_B] = point(3);
+    b[outer_near_A] = point(4);
+    a[BO_near_B] = b[AO_near_A] = point(5);
+    a[centre] = point(6);
+    b[centre] = point(7);
   }
   for (int c = 0; c < 3; ++c) {
     CubicTriangle& after = s[2 * c];
@@ -135,43 +158,85 @@ bool join_macro_edge(CubicTriangle& sa, CubicTriangle& sb, CubicTriangle& tb, Cu
   mean_row(3, Yg, Xa_there, Xb_there);
   half_edge_rows(A, rhs, 4, Ya, Xa, Xa_there, sa[A_corner], sa[outer_near_A], sa[AO_near_A], ta[BO_near_B], at_Z_a);
   half_edge_rows(A, rhs, 6, Yb, Xb, Xb_there, sb[B_corner], sb[outer_near_B], sb[BO_near_B], tb[AO_near_A], at_Z_b);
-  // Least displacement under A x = rhs: with A = L Q (Gram–Schmidt on the
-  // rows, twice, so Q's rows are orthonormal to rounding), δ = Qᵀ L⁻¹ (rhs −
-  // A x), refined once; no squared condition number. Dependent constraints (a
-  // vanishing diagonal of L, e.g. on symmetric configurations) go through the
-  // pseudo-inverse instead.
-  Eigen::Matrix<double, 8, unknowns> Q = A;
-  Eigen::Matrix<double, 8, 8> L = Eigen::Matrix<double, 8, 8>::Zero();
-  for (int i = 0; i < 8; ++i) {
+  // Least displacement under A x = rhs. Rows 0, 2, 3 only say that Z, Y_f and
+  // Y_g are means of two other unknowns: they are met exactly by computing
+  // them as such from u = (Y_a, Y_b, X_a, X_b, X_a', X_b'), in which the
+  // displacement is |δu|²_M with M = I + ¼(three 2×2 blocks of ones), a
+  // constant metric. The five other rows become B u = c, solved for the
+  // least M-displacement, refined once. Dependent constraints (a vanishing
+  // pivot, e.g. on symmetric configurations) go through the pseudo-inverse
+  // instead.
+  static constexpr int rows[5] = {1, 4, 5, 6, 7};
+  static constexpr int free_unknown[6] = {Ya, Yb, Xa, Xb, Xa_there, Xb_there};
+  static constexpr int mean_of[6] = {Z, Z, Yf, Yf, Yg, Yg};  // the mean each free unknown enters
+  Eigen::Matrix<double, 5, 6> B;
+  Eigen::Matrix<double, 5, 3> c;
+  for (int r = 0; r < 5; ++r) {
+    for (int u = 0; u < 6; ++u) B(r, u) = A(rows[r], free_unknown[u]) + 0.5 * A(rows[r], mean_of[u]);
+    c.row(r) = rhs.row(rows[r]);
+  }
+  // With δu = M^-½ w the problem is min |w| under C w = r, C = B M^-½ (M^-½
+  // block-diagonal with blocks [[p, q], [q, p]]); C = L Q by Gram–Schmidt on
+  // the rows, twice, so Q's rows are orthonormal to rounding and the
+  // condition number is not squared: w = Qᵀ L⁻¹ r. By hand: Eigen's general
+  // kernels cost more than the arithmetic at this size.
+  const double p = (std::sqrt(2.0 / 3.0) + 1.0) / 2.0, q = (std::sqrt(2.0 / 3.0) - 1.0) / 2.0;
+  Eigen::Matrix<double, 5, 6, Eigen::RowMajor> Q;
+  for (int k = 0; k < 6; k += 2) {
+    Q.col(k) = p * B.col(k) + q * B.col(k + 1);
+    Q.col(k + 1) = q * B.col(k) + p * B.col(k + 1);
+  }
+  double L[5][5] = {};
+  for (int i = 0; i < 5; ++i) {
     for (int pass = 0; pass < 2; ++pass)
       for (int j = 0; j < i; ++j) {
         const double projection = Q.row(j).dot(Q.row(i));
-        L(i, j) += projection;
+        L[i][j] += projection;
         Q.row(i) -= projection * Q.row(j);
       }
-    L(i, i) = Q.row(i).norm();
-    if (L(i, i) > 0.0) Q.row(i) /= L(i, i);
+    L[i][i] = Q.row(i).norm();
+    if (L[i][i] > 0.0) Q.row(i) /= L[i][i];
   }
+  double largest_pivot = 0.0, smallest_pivot = INFINITY;
+  for (int i = 0; i < 5; ++i) {
+    largest_pivot = std::max(largest_pivot, L[i][i]);
+    smallest_pivot = std::min(smallest_pivot, L[i][i]);
+  }
+  const auto correction = [&](Eigen::Matrix<double, 5, 3> r) -> Eigen::Matrix<double, 6, 3> {
+    for (int i = 0; i < 5; ++i) {
+      for (int k = 0; k < i; ++k) r.row(i) -= L[i][k] * r.row(k);
+      r.row(i) /= L[i][i];
+    }
+    const Eigen::Matrix<double, 6, 3> w = Q.transpose().lazyProduct(r);
+    Eigen::Matrix<double, 6, 3> delta;
+    for (int k = 0; k < 6; k += 2) {
+      delta.row(k) = p * w.row(k) + q * w.row(k + 1);
+      delta.row(k + 1) = q * w.row(k) + p * w.row(k + 1);
+    }
+    return delta;
+  };
+  Eigen::Matrix<double, 6, 3> u_old, u;
+  for (int k = 0; k < 6; ++k) u_old.row(k) = old.row(free_unknown[k]);
+  const auto expand = [](const Eigen::Matrix<double, 6, 3>& free) {
+    Points x;
+    for (int k = 0; k < 6; ++k) x.row(free_unknown[k]) = free.row(k);
+    x.row(Z) = (free.row(0) + free.row(1)) / 2.0;
+    x.row(Yf) = (free.row(2) + free.row(3)) / 2.0;
+    x.row(Yg) = (free.row(4) + free.row(5)) / 2.0;
+    return x;
+  };
   // Exact solution unless the constraints are (nearly) dependent, which
-  // shows as a vanishing diagonal of L or as control points thrown further
-  // than the macro edge is long; then the closest point of the well-posed
-  // part (pseudo-inverse, small singular values dropped): bounded, not G¹,
-  // and counted.
-  const Eigen::Matrix<double, 8, 1> diagonal = L.diagonal();
+  // shows as a vanishing pivot or as control points thrown further than the
+  // macro edge is long; then the closest point of the well-posed part
+  // (pseudo-inverse, small singular values dropped): bounded, not G¹, and
+  // counted.
   const double reach = 100.0 * (sb[B_corner] - sa[A_corner]).norm();
   Points x = old;
   bool met = false;
-  if (diagonal.minCoeff() > 1e-9 * diagonal.maxCoeff()) {
-    for (int step = 0; step < 2; ++step) {
-      // Small fixed sizes: coefficient-wise products and a hand-written
-      // forward substitution (Eigen's general kernels cost more here).
-      Eigen::Matrix<double, 8, 3> y = rhs - A.lazyProduct(x);
-      for (int i = 0; i < 8; ++i) {
-        for (int j = 0; j < i; ++j) y.row(i) -= L(i, j) * y.row(j);
-        y.row(i) /= L(i, i);
-      }
-      x += Q.transpose().lazyProduct(y);
-    }
+  if (smallest_pivot > 1e-9 * largest_pivot) {
+    u = u_old;
+    for (int step = 0; step < 2; ++step) u += correction(c - B.lazyProduct(u));
+    x = expand(u);
     met = (x - old).rowwise().norm().maxCoeff() <= reach;
   }
   if (!met) {
@@ -215,12 +280,11 @@ void join_star(CubicTriangle* s) {
 
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, double tension) {
-  const std::vector<CubicTriangle> macro = macro_patches(V, F, N, tension);
   BezierSurface surface;
   surface.patches.resize(6 * F.rows());
   surface.macro.resize(6 * F.rows());
   for (int f = 0; f < F.rows(); ++f) {
-    split_in_six(macro[f], &surface.patches[6 * f]);
+    split_in_six(macro_patch(V, F, N, f, tension), &surface.patches[6 * f]);
     for (int j = 0; j < 6; ++j) surface.macro[6 * f + j] = f;
   }
   auto& P = surface.patches;

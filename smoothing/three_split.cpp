@@ -16,13 +16,6 @@ namespace {
 constexpr int W_first = control_index(2, 0, 1), X = control_index(1, 1, 1), W_second = control_index(0, 2, 1);
 constexpr int Y_first = control_index(1, 0, 2), Y_second = control_index(0, 1, 2), Z = control_index(0, 0, 3);
 
-// Step 4: subdivision at the centroid.
-void split_in_three(const CubicTriangle& macro, CubicTriangle* micro) {
-  const Barycentric corner[3] = {Barycentric::UnitX(), Barycentric::UnitY(), Barycentric::UnitZ()};
-  const Barycentric centre = Barycentric::Constant(1.0 / 3.0);
-  for (int k = 0; k < 3; ++k) micro[k] = subpatch(macro, corner[k], corner[(k + 1) % 3], centre);
-}
-
 // The ratio λ = e1/e0 of Equation (9.3) is free: (9.3a) and (9.3d) fix each
 // end's coefficients only up to a factor. The thesis sets e0 = e1 = 1; with
 // a least-squares ratio, λ minimises the displacement of L1 and R1 from
@@ -43,9 +36,18 @@ double closest_ratio(const Eigen::Matrix<double, 2, 3>& r, const Eigen::Matrix<d
   return std::exp((lo + hi) / 2.0);
 }
 
+}  // namespace
+
+// Step 4: subdivision at the centroid.
+void split_in_three(const CubicTriangle& macro, CubicTriangle* micro) {
+  const Barycentric corner[3] = {Barycentric::UnitX(), Barycentric::UnitY(), Barycentric::UnitZ()};
+  const Barycentric centre = Barycentric::Constant(1.0 / 3.0);
+  for (int k = 0; k < 3; ++k) micro[k] = subpatch(macro, corner[k], corner[(k + 1) % 3], centre);
+}
+
 // Step 5 for one macro edge: the micro patch P on this side, Q on the other.
 // M_i is P's edge row, L_i P's next row; R_i Q's next row read in P's direction.
-bool join_macro_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio) {
+bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio) {
   const Eigen::Vector3d M0 = P[control_index(3, 0, 0)], M1 = P[control_index(2, 1, 0)];
   const Eigen::Vector3d M2 = P[control_index(1, 2, 0)], M3 = P[control_index(0, 3, 0)];
   const Eigen::Vector3d L0 = P[W_first], L2 = P[W_second];
@@ -84,7 +86,7 @@ bool join_macro_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_rati
 }
 
 // Step 6 inside one macro triangle.
-void join_micro_edges(CubicTriangle* micro) {
+void join_three_split_interior(CubicTriangle* micro) {
   for (int k = 0; k < 3; ++k) {
     CubicTriangle& after = micro[k];
     CubicTriangle& before = micro[(k + 2) % 3];
@@ -96,7 +98,6 @@ void join_micro_edges(CubicTriangle* micro) {
   for (int k = 0; k < 3; ++k) micro[k][Z] = centre;
 }
 
-}  // namespace
 
 BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                           const MeshEdges& edges, const ThreeSplitOptions& options) {
@@ -111,11 +112,11 @@ BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, 
   for (int f = 0; f < F.rows(); ++f)
     for (int e = 0; e < 3; ++e) {
       const int g = edges.neighbour(f, e);
-      if (f < g && !join_macro_edge(surface.patches[3 * f + e], surface.patches[3 * g + edges.neighbour_edge(f, e)],
+      if (f < g && !join_three_split_edge(surface.patches[3 * f + e], surface.patches[3 * g + edges.neighbour_edge(f, e)],
                                     options.least_squares_ratio))
         ++surface.dependent_edges;
     }
-  for (int f = 0; f < F.rows(); ++f) join_micro_edges(&surface.patches[3 * f]);
+  for (int f = 0; f < F.rows(); ++f) join_three_split_interior(&surface.patches[3 * f]);
   return surface;
 }
 

@@ -31,4 +31,15 @@ struct ThreeSplitOptions {
 BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                           const MeshEdges& edges, const ThreeSplitOptions& options = {});
 
+/// The scheme's steps one macro triangle or edge at a time, for schemes that
+/// combine it with other splits (the adaptive two-split of §9.7).
+/// Step 4: micro[k] = the macro patch on (V_k, V_k+1, centroid), k = 0..2.
+void split_in_three(const CubicTriangle& macro, CubicTriangle* micro);
+/// Step 5 on the macro edge between micro triangles P (this side, edge b300 →
+/// b030) and Q (the other side): sets L1 = P's b111 and R1 = Q's b111 by
+/// Equation (9.4); false when (9.4) was dependent (closest solution taken).
+bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio);
+/// Step 6 inside one macro triangle: Y_i and Z from W_i and X_i [Farin, 83].
+void join_three_split_interior(CubicTriangle* micro);
+
 }  // namespace scanstation

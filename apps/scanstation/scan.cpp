@@ -5,7 +5,6 @@
 #include "command.h"
 #include "core/errors.h"
 #include "core/version.h"
-#include "drivers/safe_state.h"
 #include "scan_parameter_options.h"
 #include "sim/simulated_turntable.h"
 #include "station_options.h"
@@ -57,10 +56,9 @@ class ScanCommand final : public Command {
     const acquisition::SessionManifest& manifest = recorder->manifest();
     for (const std::string& note : recorder->notes()) context.log->warn("{}", note);
 
-    auto station = sim::open_station(description, sim::camera_role | sim::laser_role | sim::turntable_role,
-                                     simulated.frames);
-    drivers::SafeStateGuard guard;
-    guard.add("station safe state", [&] { station->make_safe(); });
+    // Guarded before the first line is requested: a signal at any moment leaves the station safe.
+    sim::GuardedStation station(description, sim::camera_role | sim::laser_role | sim::turntable_role,
+                                simulated.frames);
     for (const auto& note : station->notes) context.log->warn("{}", note);
     acquisition::TurntableScanDevices devices{*station->camera, {}, *station->turntable, *station->clock,
                                               description.camera.timeout};

@@ -14,6 +14,7 @@
 #include "smoothing/six_split.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/three_split.h"
+#include "smoothing/two_split.h"
 #include "smoothing/vertex_normals.h"
 
 #include <cstdio>
@@ -35,8 +36,10 @@ class SmoothCommand final : public Command {
                      "control polygon, curve) or the control points as .json")
         ->required();
     cli_->add_option("--scheme", scheme_,
-                     "six-split (§9.8, least oscillation) or three-split (§9.6) for meshes, curve (§9.2) for polygons")
-        ->check(CLI::IsMember({"six-split", "three-split", "curve"}))
+                     "six-split (§9.8, least oscillation), three-split (§9.6) or adaptive-two-split (§9.7: thin "
+                     "triangles and their neighbour across the longest edge split in two, the rest in three) for "
+                     "meshes, curve (§9.2) for polygons")
+        ->check(CLI::IsMember({"six-split", "three-split", "adaptive-two-split", "curve"}))
         ->capture_default_str();
     cli_->add_option("--normals", normals_,
                      "Vertex normals (§9.4): area, uniform or inverse-area weighting, or given (the input's own "
@@ -52,6 +55,11 @@ class SmoothCommand final : public Command {
                      "The Step-2 constant t in b210 = b300 + t(b030* − b300), 1/3 in the thesis; larger values pull the "
                      "surface further along the tangent planes at the vertices (§9.9)")
         ->check(CLI::Range(0.05, 0.95))
+        ->capture_default_str();
+    cli_->add_option("--min-angle", min_angle_,
+                     "adaptive-two-split: macro triangles with a smaller angle (degrees) are two-split with their "
+                     "neighbour across their longest edge, where no neighbouring pair prevents it")
+        ->check(CLI::Range(0.0, 60.0))
         ->capture_default_str();
     cli_->add_option("--density", density_, "Tessellation: segments per patch edge")->capture_default_str();
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
@@ -118,9 +126,13 @@ class SmoothCommand final : public Command {
     normal_timer.stop();
     StageTimer patch_timer(context.report, "patches");
     const MeshEdges edges = edges_of(mesh);
-    const BezierSurface surface = scheme_ == "six-split"
-                                      ? six_split(V, mesh.faces, N, edges, tension_)
-                                      : three_split(V, mesh.faces, N, edges, {ratio_ == "least-squares", tension_});
+    const ThreeSplitOptions three_split_options{ratio_ == "least-squares", tension_};
+    const std::vector<TwoSplitPair> pairs = scheme_ == "adaptive-two-split"
+                                                ? two_split_pairs(V, mesh.faces, edges, min_angle_)
+                                                : std::vector<TwoSplitPair>{};
+    const BezierSurface surface = scheme_ == "six-split"   ? six_split(V, mesh.faces, N, edges, tension_)
+                                  : scheme_ == "three-split" ? three_split(V, mesh.faces, N, edges, three_split_options)
+                                                             : two_split(V, mesh.faces, N, edges, pairs, three_split_options);
     patch_timer.stop();
     StageTimer verify_timer(context.report, "verification");
     const G1Verification g1 = verify_g1(surface);
@@ -160,7 +172,16 @@ class SmoothCommand final : public Command {
                 "%zu normal(s) adjusted\n",
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 g1.max_normal_angle, adjusted.size());
-    if (scheme_ == "three-split") context.report["result"]["ratio"] = ratio_;
+    if (scheme_ != "six-split") context.report["result"]["ratio"] = ratio_;
+    if (scheme_ == "adaptive-two-split") {
+      // Candidates whose pair would violate the G¹ orientation stay three-split.
+      const std::size_t two_split_triangles = 3 * std::size_t(mesh.face_count()) - surface.patches.size();
+      context.report["result"]["min_angle"] = min_angle_;
+      context.report["result"]["two_split_candidates"] = 2 * pairs.size();
+      context.report["result"]["two_split_triangles"] = two_split_triangles;
+      std::printf("%zu macro triangle(s) two-split (%zu candidates below %g°)\n", two_split_triangles, 2 * pairs.size(),
+                  min_angle_);
+    }
     if (violations > 0 || surface.dependent_edges > 0)
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
                   "equations\n",
@@ -191,6 +212,7 @@ class SmoothCommand final : public Command {
   std::string normals_ = "area";
   std::string ratio_ = "least-squares";
   double tension_ = 1.0 / 3.0;
+  double min_angle_ = 20.0;
   int density_ = 4;
   std::optional<std::filesystem::path> patches_, zebra_;
 };

@@ -13,9 +13,8 @@
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
 #include "sim/sampling.h"
-#include "sim/shapes.h"
+#include "sim/scan_objects.h"
 #include "sim/stereo_rig.h"
-#include "sim/surface_of_revolution.h"
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -43,16 +42,6 @@ nlohmann::json rate_json(const acquisition::BadPixelRate& r) {
 
 // The built-in objects of the simulated stereo capture (millimetres, standing
 // on the platter).
-TriangleMesh builtin_object(const std::string& name) {
-  if (name == "sphere") {
-    TriangleMesh sphere = sim::ellipsoid(Eigen::Vector3d::Constant(30.0), 6);
-    sphere.vertices.positions.rowwise() += Eigen::RowVector3d(6.0, -4.0, 30.0);
-    return sphere;
-  }
-  return sim::surface_of_revolution(40.0 * (name == "chalice" ? sim::chalice_profile(300) : sim::candlestick_profile(300)),
-                                    720);
-}
-
 class StereoCommand final : public Command {
  public:
   explicit StereoCommand(CLI::App& parent)
@@ -65,8 +54,9 @@ class StereoCommand final : public Command {
         ->required();
     cli_->add_option("--backend", backend_, "sim: capture with the simulated stereo rig instead of reading a pair")
         ->check(CLI::IsMember({"sim"}));
-    cli_->add_option("--object", object_, "Simulated object: sphere, chalice or candlestick")
-        ->check(CLI::IsMember({"sphere", "chalice", "candlestick"}))
+    cli_->add_option("--object", object_,
+                     "Simulated object: a built-in name (sphere, ellipsoid, torus, chalice, candlestick) or a mesh file, "
+                     "placed and scaled to fit the rig; the points are written in the file's own coordinates")
         ->capture_default_str();
     cli_->add_option("--views", views_, "Turntable angles, evenly spaced over a turn")
         ->check(CLI::Range(1, 3600))
@@ -163,7 +153,8 @@ class StereoCommand final : public Command {
   // the object frame, fuses them, writes the cloud.
   void simulate(CommandContext& context) {
     constexpr double platter_radius = 60.0;
-    const TriangleMesh object = builtin_object(object_);
+    const sim::ScanObject placed = sim::scan_object(object_);
+    const TriangleMesh& object = placed.on_platter;
     const Eigen::AlignedBox3d box = bounding_box(object.vertices.positions);
     const double height = box.max().z();
     const sim::StereoRig rig = sim::stereo_rig(height, platter_radius, width_, height_);
@@ -196,7 +187,9 @@ class StereoCommand final : public Command {
     const acquisition::LaserScanPoints fused = acquisition::fuse_views(views, fusion_);
     fuse_timer.stop();
     StageTimer write_timer(context.report, "write");
-    io::write_points(output_, fused.cloud, {std::nullopt, std::nullopt, context.overwrite});
+    PointCloud own = fused.cloud;  // back into the mesh file's coordinates (identity for built-in objects)
+    own.positions = ((own.positions.rowwise() - placed.translation.transpose()) / placed.scale).eval();
+    io::write_points(output_, own, {std::nullopt, std::nullopt, context.overwrite});
     write_timer.stop();
 
     const double diagonal = box.diagonal().norm();

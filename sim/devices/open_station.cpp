@@ -142,10 +142,11 @@ void OpenStation::make_safe() {
   if (camera) camera->restore_controls();
 }
 
-GuardedStation::GuardedStation(const StationDescription& description, unsigned roles) {
+GuardedStation::GuardedStation(const StationDescription& description, unsigned roles,
+                               const FrameSourceFactory& sim_frames) {
   // In the body, not the initialiser list: guard_ exists before the first
   // line is requested. Added after a signal fired, the action runs at once.
-  station_ = open_station(description, roles);
+  station_ = open_station(description, roles, sim_frames);
   guard_.add("station safe state", [this] { station_->make_safe(); });
 }
 

@@ -66,7 +66,8 @@ std::unique_ptr<OpenStation> open_station(const drivers::StationDescription& des
 /// process, like the guard.
 class GuardedStation {
  public:
-  GuardedStation(const drivers::StationDescription& description, unsigned roles);
+  GuardedStation(const drivers::StationDescription& description, unsigned roles,
+                 const FrameSourceFactory& sim_frames = {});
   OpenStation& operator*() { return *station_; }
   OpenStation* operator->() { return station_.get(); }
 

@@ -48,7 +48,8 @@ std::function<double(Timestamp)> turntable_actuator(const OpenStation& station,
   if (role.backend == "sim" && station.sim_chip) {
     const SimGpioChip* chip = station.sim_chip.get();
     const double steps_per_rev = role.stepper.steps_per_rev();
-    return [chip, steps_per_rev](Timestamp t) { return stepper_angle(*chip, steps_per_rev, t); };
+    const double start = d.sim_table_angle_deg * std::numbers::pi / 180.0;  // the table's physical angle at power-up
+    return [chip, steps_per_rev, start](Timestamp t) { return start + stepper_angle(*chip, steps_per_rev, t); };
   }
   if (role.backend == "usb" && station.sim_board) {
     const SimUsbBoard* board = station.sim_board.get();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -342,6 +343,17 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   EXPECT_EQ(patches["patches"][0]["control_points"].size(), 10u);
   EXPECT_THAT(slurp(dir / "s.obj"), testing::HasSubstr("\nvn "));
   EXPECT_EQ(slurp(dir / "z.png").substr(1, 3), "PNG");
+
+  r = scanstation("smooth " + eight + " -o " + path(dir / "t.ply") + " --scheme adaptive-two-split --min-angle 40 " +
+                  "--patches " + path(dir / "t.json") + " --report " + path(dir / "t.report.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json two = nlohmann::json::parse(slurp(dir / "t.report.json"))["result"];
+  EXPECT_LT(two["g1"]["max_normal_angle"].get<double>(), 1e-8);
+  EXPECT_GT(two["two_split_triangles"].get<int>(), 0);
+  const nlohmann::json two_patches = nlohmann::json::parse(slurp(dir / "t.json"));
+  std::set<int> splits;
+  for (const nlohmann::json& patch : two_patches["patches"]) splits.insert(patch["split"].get<int>());
+  EXPECT_EQ(splits, (std::set<int>{2, 3}));
 
   std::ofstream(dir / "square.xy") << "0 0\n2 0\n2 1\n0 1\n";
   r = scanstation("smooth " + path(dir / "square.xy") + " --scheme curve -o " + path(dir / "c.svg") + " --report " +
