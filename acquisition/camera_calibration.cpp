@@ -5,6 +5,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <string>
 
 namespace scanstation::acquisition {
@@ -17,6 +20,10 @@ std::optional<std::vector<cv::Point2f>> find_chessboard(const cv::Mat& image, cv
     return std::nullopt;
   cv::cornerSubPix(grey, corners, {11, 11}, {-1, -1},
                    cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01));
+  // OpenCV may start at either end of the board; start at the top so that a
+  // corner keeps its index while the board turns (turntable calibration).
+  const cv::Point2f first = corners.front(), last = corners.back();
+  if (first.y > last.y || (first.y == last.y && first.x > last.x)) std::reverse(corners.begin(), corners.end());
   return corners;
 }
 
@@ -41,6 +48,37 @@ CameraIntrinsics calibrate_camera(const std::vector<std::vector<cv::Point2f>>& c
   camera.camera_matrix = K;
   camera.distortion = distortion;
   camera.per_view_rms.assign(per_view.begin<double>(), per_view.end<double>());
+  // Board normals (third column of each rotation): Zhang's method needs the
+  // board planes to differ, else the focal length trades off against the distance.
+  double widest = 0;
+  std::vector<cv::Vec3d> normals;
+  for (const cv::Mat& rvec : rvecs) {
+    cv::Matx33d R;
+    cv::Rodrigues(rvec, R);
+    normals.emplace_back(R(0, 2), R(1, 2), R(2, 2));
+  }
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    for (std::size_t j = i + 1; j < normals.size(); ++j)
+      widest = std::max(widest, std::acos(std::clamp(normals[i].dot(normals[j]), -1.0, 1.0)));
+  constexpr double degree = std::numbers::pi / 180.0;
+  if (widest < 5.0 * degree)
+    throw InvalidInput("camera calibration: the board is nearly parallel in all " + std::to_string(corners.size()) +
+                       " views (at most " + std::to_string(widest / degree).substr(0, 4) +
+                       " degrees apart); tilt and turn it between views (by 10 degrees or more)");
+  return camera;
+}
+
+PinholeCamera pinhole_camera(const CameraIntrinsics& intrinsics, cv::Size image_size) {
+  PinholeCamera camera;
+  camera.width = image_size.width;
+  camera.height = image_size.height;
+  camera.fx = intrinsics.camera_matrix(0, 0);
+  camera.fy = intrinsics.camera_matrix(1, 1);
+  camera.cx = intrinsics.camera_matrix(0, 2);
+  camera.cy = intrinsics.camera_matrix(1, 2);
+  const cv::Mat& d = intrinsics.distortion;
+  const auto coefficient = [&](int i) { return static_cast<int>(d.total()) > i ? d.at<double>(i) : 0.0; };
+  camera.distortion = {coefficient(0), coefficient(1), coefficient(4), coefficient(2), coefficient(3)};
   return camera;
 }
 
