@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -18,7 +19,16 @@ std::optional<std::vector<cv::Point2f>> find_chessboard(const cv::Mat& image, cv
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(grey, inner_corners, corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
     return std::nullopt;
-  cv::cornerSubPix(grey, corners, {11, 11}, {-1, -1},
+  // The refinement window must stay inside the squares around a corner: at
+  // most 11 px (OpenCV's sample), less for a board seen small.
+  double spacing = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < inner_corners.height; ++r)
+    for (int c = 0; c + 1 < inner_corners.width; ++c) {
+      const cv::Point2f d = corners[std::size_t(r * inner_corners.width + c + 1)] - corners[std::size_t(r * inner_corners.width + c)];
+      spacing = std::min(spacing, std::sqrt(static_cast<double>(d.dot(d))));
+    }
+  const int half = std::clamp(static_cast<int>(0.4 * spacing), 2, 11);
+  cv::cornerSubPix(grey, corners, {half, half}, {-1, -1},
                    cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01));
   // OpenCV may start at either end of the board; start at the top so that a
   // corner keeps its index while the board turns (turntable calibration).

@@ -56,5 +56,6 @@ std::unique_ptr<Command> make_devices_command(CLI::App& parent);
 std::unique_ptr<Command> make_capture_command(CLI::App& parent);
 std::unique_ptr<Command> make_turntable_command(CLI::App& parent);
 std::unique_ptr<Command> make_laser_command(CLI::App& parent);
+std::unique_ptr<Command> make_calibrate_command(CLI::App& parent);
 
 }  // namespace scanstation::app

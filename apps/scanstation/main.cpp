@@ -41,6 +41,7 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_capture_command(cli));
   commands.push_back(app::make_turntable_command(cli));
   commands.push_back(app::make_laser_command(cli));
+  commands.push_back(app::make_calibrate_command(cli));
 
   try {
     cli.parse(argc, argv);
