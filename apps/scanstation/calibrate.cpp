@@ -86,6 +86,9 @@ class CalibrateCommand final : public Command {
     description_ = station_.description();
     size_ = {description_.camera.format.size.width, description_.camera.format.size.height};
     sim_ = station_.backend == "sim";
+    if (sim_ && !(images_.empty() && off_images_.empty() && on_images_.empty() && left_images_.empty() &&
+                  right_images_.empty()))
+      throw InvalidInput("calibrate: give images or --backend sim, not both");
     if (sim_) rig_ = sim::turntable_laser_rig(sim_object_height, sim_platter_radius, size_.width, size_.height);
     StationCalibration calibration = open_calibration(context);
     const std::string part = cli_->get_subcommands().front()->get_name();
@@ -130,7 +133,6 @@ class CalibrateCommand final : public Command {
   }
 
   std::vector<cv::Mat> read_images(const std::vector<std::string>& arguments, const char* what) const {
-    if (sim_ && !arguments.empty()) throw InvalidInput(std::string(what) + ": give images or --backend sim, not both");
     if (!sim_ && arguments.empty()) throw InvalidInput(std::string(what) + ": no images given (or use --backend sim)");
     std::vector<cv::Mat> images;
     for (const auto& path : expand_images(arguments)) images.push_back(read_grey_image(path, size_));
