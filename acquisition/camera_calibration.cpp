@@ -51,9 +51,9 @@ CameraIntrinsics calibrate_camera(const std::vector<std::vector<cv::Point2f>>& c
     throw InvalidInput("camera calibration: " + std::to_string(corners.size()) + " chessboard views; at least 3 are needed");
   const std::vector<std::vector<cv::Point3f>> objects(corners.size(), chessboard_points(inner_corners, square_size));
   CameraIntrinsics camera;
-  cv::Mat K, distortion, per_view;
+  cv::Mat K, distortion, per_view, deviations;
   std::vector<cv::Mat> rvecs, tvecs;
-  camera.rms = cv::calibrateCamera(objects, corners, image_size, K, distortion, rvecs, tvecs, cv::noArray(),
+  camera.rms = cv::calibrateCamera(objects, corners, image_size, K, distortion, rvecs, tvecs, deviations,
                                    cv::noArray(), per_view, fix_k3 ? cv::CALIB_FIX_K3 : 0);
   camera.camera_matrix = K;
   camera.distortion = distortion;
@@ -71,10 +71,14 @@ CameraIntrinsics calibrate_camera(const std::vector<std::vector<cv::Point2f>>& c
     for (std::size_t j = i + 1; j < normals.size(); ++j)
       widest = std::max(widest, std::acos(std::clamp(normals[i].dot(normals[j]), -1.0, 1.0)));
   constexpr double degree = std::numbers::pi / 180.0;
-  if (widest < 5.0 * degree)
+  // The fit's own uncertainty of fx catches the same degeneracy when noise
+  // makes the (wrongly fitted) normals look different.
+  const double fx_uncertainty = deviations.at<double>(0) / K.at<double>(0, 0);
+  if (widest < 5.0 * degree || !(fx_uncertainty < 0.05))
     throw InvalidInput("camera calibration: the board is nearly parallel in all " + std::to_string(corners.size()) +
                        " views (at most " + std::to_string(widest / degree).substr(0, 4) +
-                       " degrees apart); tilt and turn it between views (by 10 degrees or more)");
+                       " degrees apart, focal length ±" + std::to_string(100 * fx_uncertainty).substr(0, 4) +
+                       "%); tilt and turn it between views (by 10 degrees or more)");
   return camera;
 }
 
