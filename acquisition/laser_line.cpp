@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 namespace scanstation::acquisition {
 
@@ -74,6 +75,19 @@ LaserLine extract_laser_line(const cv::Mat& laser_on, const cv::Mat& laser_off, 
     throw InvalidInput("laser line: the laser-on and laser-off frames must be 8-bit single-channel images");
   if (laser_on.size() != laser_off.size())
     throw InvalidInput("laser line: the laser-on and laser-off frames differ in size");
+  if (options.stripe == StripeDirection::horizontal) {
+    // Columns become rows: one search serves both directions. The transpose
+    // costs two passes over the frames, small against the search itself.
+    cv::Mat on, off;
+    cv::transpose(laser_on, on);
+    cv::transpose(laser_off, off);
+    LaserLineOptions transposed = options;
+    transposed.stripe = StripeDirection::vertical;
+    transposed.region = cv::Rect(options.region.y, options.region.x, options.region.height, options.region.width);
+    LaserLine line = extract_laser_line(on, off, transposed);
+    for (LinePeak& peak : line.peaks) std::swap(peak.x, peak.y);
+    return line;
+  }
   const cv::Rect frame(0, 0, laser_on.cols, laser_on.rows);
   const cv::Rect region = options.region.empty() ? frame : options.region;
   if ((region & frame) != region)

@@ -1,5 +1,6 @@
 // Laser-line extraction: the sub-pixel centre of the laser stripe in every
-// image row, from a laser-on / laser-off frame pair.
+// image row (or every column, for a horizontal stripe), from a laser-on /
+// laser-off frame pair.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -14,6 +15,14 @@ namespace scanstation::acquisition {
 /// parabolic       three-point parabola (fast, biased towards the nearest pixel)
 enum class PeakFit { centre_of_mass, gaussian, parabolic };
 
+/// Which way the stripe runs in the image, and so which lines are searched.
+/// vertical    along the columns (a vertical light plane seen from beside it):
+///             one peak per row
+/// horizontal  along the rows (a horizontal light plane seen from above or
+///             below): one peak per column
+enum class StripeDirection { vertical, horizontal };
+
+/// stripe              the stripe's direction
 /// fit                 sub-pixel estimator
 /// threshold_sigmas    a peak must rise this many noise σ above zero; σ of the
 ///                     difference image is estimated from the frames as a
@@ -29,6 +38,7 @@ enum class PeakFit { centre_of_mass, gaussian, parabolic };
 ///                     fraction of the first makes the row ambiguous: rejected
 /// region              rows and columns searched; an empty rectangle = the whole frame
 struct LaserLineOptions {
+  StripeDirection stripe = StripeDirection::vertical;
   PeakFit fit = PeakFit::gaussian;
   double threshold_sigmas = 6.0;
   double minimum_contrast = 10.0;
@@ -39,7 +49,8 @@ struct LaserLineOptions {
   cv::Rect region;
 };
 
-/// One stripe centre: image position (x sub-pixel, y the row), peak height
+/// One stripe centre: image position (x sub-pixel and y the row, or for a
+/// horizontal stripe x the column and y sub-pixel), peak height
 /// over the laser-off frame (grey levels), width at half maximum (pixels) and
 /// a confidence in (0, 1] from the contrast over the threshold and the width.
 struct LinePeak {
@@ -47,8 +58,9 @@ struct LinePeak {
   float contrast = 0, width = 0, confidence = 0;
 };
 
-/// The peaks found, at most one per row, in row order, with the noise σ of the
-/// difference image and the threshold at the brightest laser-off level.
+/// The peaks found, at most one per row (column), in row (column) order, with
+/// the noise σ of the difference image and the threshold at the brightest
+/// laser-off level.
 struct LaserLine {
   std::vector<LinePeak> peaks;
   double noise_sigma = 0, threshold = 0;
@@ -56,8 +68,9 @@ struct LaserLine {
 
 /// laser_on, laser_off  8-bit single-channel frames of the same size
 /// Throws InvalidInput for frames of another type or different sizes, or a
-/// region outside the frame. The stripe is assumed to run roughly along the
-/// columns (a vertical light plane), so each row is searched once.
+/// region outside the frame. Each row (or column, options.stripe) is
+/// searched once; the column search is the row search on the transposed
+/// frames, so both have the same sub-pixel accuracy and rejections.
 LaserLine extract_laser_line(const cv::Mat& laser_on, const cv::Mat& laser_off, const LaserLineOptions& options = {});
 
 }  // namespace scanstation::acquisition

@@ -92,6 +92,10 @@ class Camera {
   /// now in effect. Throws InvalidInput for an unknown key.
   virtual std::int64_t set_control(const std::string& key, std::int64_t value) = 0;
   virtual std::int64_t control(const std::string& key) = 0;
+  /// Puts every control changed through set_control() back to the value it
+  /// had before the first change (also done on destruction). Safe to call from
+  /// the safe-state thread while another thread grabs; failures are logged.
+  virtual void restore_controls() {}
   virtual void start() = 0;
   virtual void stop() = 0;
   /// The oldest frame not yet grabbed; waits at most `timeout`, then throws DeviceTimeout.

@@ -1,6 +1,7 @@
 #include "drivers/laser.h"
 
 #include "core/log.h"
+#include "drivers/device_error.h"
 
 namespace scanstation::drivers {
 
@@ -18,8 +19,16 @@ Laser::~Laser() {
 }
 
 Timestamp Laser::set(bool on) {
+  std::lock_guard lock(mutex_);
+  if (on && shut_down_) throw DeviceError("laser " + output_->describe() + " is held off by the safe state");
   output_->set(on);
   return clock_.now() + settle_;
+}
+
+void Laser::shut_down() {
+  std::lock_guard lock(mutex_);
+  shut_down_ = true;
+  output_->set(false);
 }
 
 }  // namespace scanstation::drivers

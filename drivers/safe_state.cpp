@@ -18,6 +18,7 @@ constexpr std::array kSignals{SIGINT, SIGTERM, SIGHUP};
 // The signal handler can only reach the guard through a global; it is the one
 // piece of global state, set while a guard exists.
 std::atomic<int> g_signal_pipe{-1};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler may only touch lock-free atomics");
 std::array<struct sigaction, kSignals.size()> g_previous{};
 
 extern "C" void forward_signal(int signal_number) {
@@ -57,10 +58,15 @@ SafeStateGuard::~SafeStateGuard() {
 void SafeStateGuard::add(const std::string& name, std::function<void()> action) {
   std::lock_guard lock(mutex_);
   actions_.emplace_back(name, std::move(action));
+  if (fired_) run_actions();
 }
 
 void SafeStateGuard::make_safe() {
   std::lock_guard lock(mutex_);
+  run_actions();
+}
+
+void SafeStateGuard::run_actions() {
   for (auto it = actions_.rbegin(); it != actions_.rend(); ++it) {
     try {
       it->second();
@@ -77,7 +83,11 @@ void SafeStateGuard::watch() {
     if (n < 0 && errno == EINTR) continue;
     if (n != 1 || signal_number == 0) return;  // the guard is being destroyed
     room_logger("drivers")->warn("signal {}: switching lasers off and disabling the motor", int(signal_number));
-    make_safe();
+    {
+      std::lock_guard lock(mutex_);
+      fired_ = true;
+      run_actions();
+    }
     signal(signal_number, SIG_DFL);
     raise(signal_number);
   }

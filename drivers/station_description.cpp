@@ -152,7 +152,7 @@ LaserRole read_laser(const Section& s, const std::string& chip) {
 
 TurntableRole read_turntable(const Section& s, const std::string& default_chip) {
   s.only({"backend", "chip", "step", "dir", "enable", "home", "full_steps_per_rev", "microsteps", "gear_ratio",
-          "max_speed_deg_s", "acceleration_deg_s2", "home_speed_deg_s", "settle_ms"});
+          "max_speed_deg_s", "acceleration_deg_s2", "home_speed_deg_s", "home_overtravel_deg", "settle_ms"});
   TurntableRole table;
   table.backend = s.text("backend", "sim", {"sim", "gpio", "usb"});
   StepperConfig& c = table.stepper;
@@ -162,6 +162,7 @@ TurntableRole read_turntable(const Section& s, const std::string& default_chip) 
   c.max_speed_deg_s = s.number("max_speed_deg_s", c.max_speed_deg_s, 1e-3, 1e5);
   c.acceleration_deg_s2 = s.number("acceleration_deg_s2", c.acceleration_deg_s2, 1e-3, 1e6);
   c.home_speed_deg_s = s.number("home_speed_deg_s", c.home_speed_deg_s, 1e-3, 1e5);
+  c.home_overtravel_deg = s.number("home_overtravel_deg", c.home_overtravel_deg, 0.0, 360.0);
   c.settle = milliseconds(s.number("settle_ms", 100.0, 0.0, 60000.0));
   if (table.backend == "gpio") {
     const std::string chip = s.text("chip", default_chip);
@@ -226,8 +227,9 @@ StationDescription read_station(const std::filesystem::path& file) {
   }
   if (const toml::table* t = top.table("sim")) {
     const Section sim(*t, "sim", file);
-    sim.only({"state_file"});
+    sim.only({"state_file", "table_angle_deg"});
     station.sim_state_file = sim.text("state_file", "");
+    station.sim_table_angle_deg = sim.number("table_angle_deg", 0.0, -1e6, 1e6);
   }
   return station;
 }

@@ -51,6 +51,7 @@ struct StationDescription {
   std::chrono::milliseconds usb_timeout{500};
   std::chrono::milliseconds usb_wait{0};  // wait this long for the board to arrive (hotplug)
   std::filesystem::path sim_state_file;   // sim GPIO levels mirrored here when set
+  double sim_table_angle_deg = 0;         // physical angle of the simulated table at start (home switch at 0)
   bool usb_simulated = false;             // serve "usb" roles from a simulated board
 
   /// Every role's backend replaced by its simulated counterpart ("usb" roles by a simulated board).

@@ -6,6 +6,7 @@
 #include "drivers/trapezoid_ramp.h"
 
 #include <cmath>
+#include <spdlog/fmt/fmt.h>
 
 namespace scanstation::drivers {
 
@@ -19,6 +20,7 @@ void StepperConfig::validate() const {
   require(max_speed_deg_s > 0, "max_speed_deg_s", "a positive number");
   require(acceleration_deg_s2 > 0, "acceleration_deg_s2", "a positive number");
   require(home_speed_deg_s > 0, "home_speed_deg_s", "a positive number");
+  require(home_overtravel_deg >= 0, "home_overtravel_deg", "a non-negative number");
   require(pulse_width.count() > 0, "pulse_width", "a positive time");
 }
 
@@ -38,26 +40,51 @@ StepperTurntable::~StepperTurntable() {
 }
 
 void StepperTurntable::disable() {
+  std::lock_guard lock(mutex_);
   lines_.enable->set(false);
   lines_.step->set(false);
   enabled_ = false;
 }
 
+void StepperTurntable::shut_down() {
+  std::lock_guard lock(mutex_);
+  shut_down_ = true;
+  lines_.enable->set(false);
+  lines_.step->set(false);
+  enabled_ = false;
+}
+
+void StepperTurntable::require_running() const {
+  if (shut_down_) throw DeviceError("turntable " + describe() + " was stopped by the safe state");
+}
+
 void StepperTurntable::prepare(bool forward) {
-  lines_.direction->set(forward);
-  Timestamp ready = clock_.now() + config_.direction_setup;
-  if (!enabled_) {
-    lines_.enable->set(true);
-    enabled_ = true;
-    ready = std::max(ready, clock_.now() + config_.enable_delay);
+  Timestamp ready;
+  {
+    std::lock_guard lock(mutex_);
+    require_running();
+    lines_.direction->set(forward);
+    ready = clock_.now() + config_.direction_setup;
+    if (!enabled_) {
+      lines_.enable->set(true);
+      enabled_ = true;
+      ready = std::max(ready, clock_.now() + config_.enable_delay);
+    }
   }
   clock_.sleep_until(ready);
 }
 
 void StepperTurntable::pulse(Timestamp at) {
   clock_.sleep_until(at);
-  lines_.step->set(true);
+  {
+    // Checked under the lock with the rising edge: once shut_down() has run
+    // no further step can be issued.
+    std::lock_guard lock(mutex_);
+    require_running();
+    lines_.step->set(true);
+  }
   clock_.sleep_until(clock_.now() + config_.pulse_width);
+  std::lock_guard lock(mutex_);
   lines_.step->set(false);
 }
 
@@ -88,18 +115,36 @@ double StepperTurntable::angle() const { return static_cast<double>(position_) *
 
 Timestamp StepperTurntable::home() {
   if (!lines_.home) throw DeviceError("turntable " + describe() + " has no home switch");
+  const double per_degree = config_.steps_per_rev() / 360.0;
+  const double travel_deg = 360.0 + config_.home_overtravel_deg;
+  const auto limit = static_cast<std::int64_t>(std::ceil(travel_deg * per_degree));
+  const Timestamp period = seconds(1.0 / (config_.home_speed_deg_s * per_degree));
+  // 0 is where the switch closes while turning backwards: the same edge every
+  // time, whatever the switch's width. Standing on it, leave it forwards first.
+  if (lines_.home->value()) {
+    prepare(true);
+    for (std::int64_t i = 0; lines_.home->value(); ++i) {
+      if (i == limit)
+        throw DeviceError(fmt::format("home switch {} stays active over {:.1f}° of travel: stuck closed or wired to "
+                                      "the wrong line",
+                                      lines_.home->describe(), travel_deg));
+      pulse(clock_.now() + period);
+      ++position_;
+    }
+  }
   prepare(false);
-  const auto limit = static_cast<std::int64_t>(std::ceil(config_.steps_per_rev()));
-  const Timestamp period = seconds(360.0 / (config_.home_speed_deg_s * config_.steps_per_rev()));
-  for (std::int64_t i = 0; i <= limit; ++i) {
+  for (std::int64_t i = 0; i < limit; ++i) {
+    pulse(clock_.now() + period);
+    --position_;
     if (lines_.home->value()) {
       position_ = 0;
       commanded_ = 0;
       return clock_.now() + config_.settle;
     }
-    pulse(clock_.now() + period);
   }
-  throw DeviceError("home switch " + lines_.home->describe() + " not reached within one revolution");
+  throw DeviceError(fmt::format("home switch {} did not become active within {:.1f}° ({} steps) of backwards travel: "
+                                "check the switch and its wiring",
+                                lines_.home->describe(), travel_deg, limit));
 }
 
 std::string StepperTurntable::describe() const {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 
 namespace scanstation::drivers {
 
@@ -17,6 +18,7 @@ struct StepperConfig {
   double max_speed_deg_s = 60.0;    // table degrees per second
   double acceleration_deg_s2 = 120.0;
   double home_speed_deg_s = 10.0;   // constant speed while seeking the switch
+  double home_overtravel_deg = 10.0;  // searched beyond one full turn before giving up
   Timestamp pulse_width = std::chrono::microseconds(5);   // STEP high time (driver minimum ~2 µs)
   Timestamp direction_setup = std::chrono::microseconds(5);  // DIR stable before the first STEP edge
   Timestamp enable_delay = std::chrono::milliseconds(2);  // driver wake-up after ENABLE
@@ -47,8 +49,12 @@ class StepperTurntable final : public Turntable {
 
   Timestamp rotate_by(double degrees) override;
   double angle() const override;
+  /// Seeks the switch backwards at home_speed_deg_s for at most one turn
+  /// plus home_overtravel_deg; throws DeviceError naming the switch line when
+  /// it never becomes active.
   Timestamp home() override;
   void disable() override;
+  void shut_down() override;
   std::string describe() const override;
 
   /// Absolute position in microsteps.
@@ -57,6 +63,8 @@ class StepperTurntable final : public Turntable {
  private:
   void prepare(bool forward);
   void pulse(Timestamp at);
+  /// Throws once shut_down() has run; call with mutex_ held.
+  void require_running() const;
 
   StepperLines lines_;
   Clock& clock_;
@@ -64,6 +72,8 @@ class StepperTurntable final : public Turntable {
   std::int64_t position_ = 0;
   double commanded_ = 0;  // degrees: the sum of every requested move since home
   bool enabled_ = false;
+  std::mutex mutex_;  // every line write, against shut_down() from the safe-state thread
+  bool shut_down_ = false;
 };
 
 }  // namespace scanstation::drivers

@@ -26,6 +26,12 @@ class Turntable {
   virtual Timestamp home() = 0;
   /// Cuts motor current (safe state); the next move re-enables it.
   virtual void disable() = 0;
+  /// Cuts motor current for good: a move under way stops at its next step and
+  /// every later move throws DeviceError. Called by the safe-state path from
+  /// another thread, so implementations that move in the caller's thread must
+  /// serialise it with their line writes (StepperTurntable, UsbController do);
+  /// the default only disables.
+  virtual void shut_down() { disable(); }
   virtual std::string describe() const = 0;
 };
 

@@ -48,9 +48,11 @@ void UsbController::transfer(unsigned char endpoint, unsigned char* data, int le
   check_usb_result(code, describe(), during);
 }
 
-usb::Message UsbController::call(Command command, std::vector<std::uint8_t> payload) {
+usb::Message UsbController::call(Command command, std::vector<std::uint8_t> payload, bool activates) {
   std::lock_guard lock(mutex_);
   const std::string name = usb::command_name(command);
+  if (activates && shut_down_)
+    throw DeviceError("USB controller " + describe() + ": " + name + " refused, the board is held in its safe state");
   const std::uint8_t sequence = ++sequence_;
   auto request = usb::encode({usb::kRequestMagic, command, sequence, std::move(payload)});
   int sent = 0;
@@ -101,16 +103,23 @@ UsbBoardStatus UsbController::status() {
   return status;
 }
 
-void UsbController::move(std::int32_t steps) { call(Command::move, usb::PayloadWriter().i32(steps).bytes()); }
+void UsbController::move(std::int32_t steps) { call(Command::move, usb::PayloadWriter().i32(steps).bytes(), true); }
 void UsbController::set_speed(std::uint32_t max_speed, std::uint32_t acceleration) {
   call(Command::set_speed, usb::PayloadWriter().u32(max_speed).u32(acceleration).bytes());
 }
 void UsbController::laser(int index, bool on) {
-  call(Command::laser, usb::PayloadWriter().u8(static_cast<std::uint8_t>(index)).u8(on).bytes());
+  call(Command::laser, usb::PayloadWriter().u8(static_cast<std::uint8_t>(index)).u8(on).bytes(), on);
 }
-void UsbController::enable(bool on) { call(Command::enable, usb::PayloadWriter().u8(on).bytes()); }
-void UsbController::home() { call(Command::home); }
+void UsbController::enable(bool on) { call(Command::enable, usb::PayloadWriter().u8(on).bytes(), on); }
+void UsbController::home() { call(Command::home, {}, true); }
 void UsbController::make_safe() { call(Command::safe); }
+void UsbController::shut_down() {
+  {
+    std::lock_guard lock(mutex_);
+    shut_down_ = true;  // from here on no exchange can switch anything on
+  }
+  make_safe();
+}
 
 UsbTurntable::UsbTurntable(UsbController& board, Clock& clock, UsbTurntableConfig config)
     : board_(board), clock_(clock), config_(config) {

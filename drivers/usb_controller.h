@@ -71,17 +71,22 @@ class UsbController {
   void enable(bool on);
   void home();
   void make_safe();
+  /// make_safe() for good: later MOVE, HOME, LASER on and ENABLE on throw
+  /// DeviceError (the safe-state path; see drivers/safe_state.h).
+  void shut_down();
   std::string describe() const { return endpoints_->describe(); }
 
  private:
   /// One request/reply exchange; checks sequence, command and status.
-  usb::Message call(usb::Command command, std::vector<std::uint8_t> payload = {});
+  /// `activates` (motion, light) is refused after shut_down().
+  usb::Message call(usb::Command command, std::vector<std::uint8_t> payload = {}, bool activates = false);
   void transfer(unsigned char endpoint, unsigned char* data, int length, int* transferred, const std::string& during);
 
   std::unique_ptr<UsbEndpoints> endpoints_;
   std::chrono::milliseconds timeout_;
   std::uint8_t sequence_ = 0;
   std::mutex mutex_;  // one exchange at a time (the safe-state guard may call in)
+  bool shut_down_ = false;
 };
 
 struct UsbTurntableConfig {
@@ -99,6 +104,7 @@ class UsbTurntable final : public Turntable {
   double angle() const override;
   Timestamp home() override;
   void disable() override { board_.enable(false); }
+  void shut_down() override { board_.shut_down(); }
   std::string describe() const override { return "USB turntable " + board_.describe(); }
 
  private:

@@ -110,21 +110,26 @@ V4l2Camera::V4l2Camera(std::string path, V4l2System& system, Clock& clock)
 }
 
 V4l2Camera::~V4l2Camera() {
-  auto log = room_logger("drivers");
   try {
     stop();
   } catch (const std::exception& e) {
-    log->warn("{}: stopping the stream: {}", path_, e.what());
+    room_logger("drivers")->warn("{}: stopping the stream: {}", path_, e.what());
   }
+  restore_controls();
+  system_.close(fd_);
+}
+
+void V4l2Camera::restore_controls() {
+  std::lock_guard lock(controls_mutex_);
   // Restore in reverse order: auto-exposure (changed first) goes back last.
   for (auto it = originals_.rbegin(); it != originals_.rend(); ++it) {
     try {
       write_control(it->first, it->second);
     } catch (const std::exception& e) {
-      log->warn("{}: restoring control {:#x}: {}", path_, it->first, e.what());
+      room_logger("drivers")->warn("{}: restoring control {:#x}: {}", path_, it->first, e.what());
     }
   }
-  system_.close(fd_);
+  originals_.clear();
 }
 
 std::string V4l2Camera::description() const {
@@ -274,6 +279,7 @@ V4l2Camera::Control& V4l2Camera::find_control(const std::string& key) {
 std::int64_t V4l2Camera::set_control(const std::string& key, std::int64_t value) {
   const Control& control = find_control(key);
   const auto applied = static_cast<std::int32_t>(clamp_control(control.info, value));
+  std::lock_guard lock(controls_mutex_);
   const bool first_change = std::none_of(originals_.begin(), originals_.end(),
                                          [&](const auto& original) { return original.first == control.id; });
   const std::int32_t before = read_control(control.id);

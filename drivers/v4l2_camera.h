@@ -11,6 +11,7 @@
 #include "drivers/v4l2_system.h"
 
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@ class V4l2Camera final : public Camera {
   std::vector<ControlInfo> controls() override;
   std::int64_t set_control(const std::string& key, std::int64_t value) override;
   std::int64_t control(const std::string& key) override;
+  void restore_controls() override;
   void start() override;
   void stop() override;
   Frame grab(std::chrono::milliseconds timeout) override;
@@ -74,6 +76,7 @@ class V4l2Camera final : public Camera {
   Timestamp frame_interval_{0};
   std::vector<Control> controls_;
   std::vector<std::pair<std::uint32_t, std::int32_t>> originals_;  // first value of every changed control
+  std::mutex controls_mutex_;  // originals_ and control writes, against restore_controls() from another thread
   std::vector<Buffer> buffers_;
   bool streaming_ = false;
   SequenceCounter sequence_counter_;

@@ -138,8 +138,48 @@ constexpr int max_attempts = 256;
 /// refining (the children are usually missed by the ray).
 constexpr int fan_limit = 4;
 
+/// The ray of one query as a segment x → x + length·direction, with the
+/// direction normalised once so each volume test below costs a few flops.
+/// A zero direction component gets a huge finite inverse, so the slab test
+/// needs no special case and never meets 0·∞.
+struct QuerySegment {
+  Eigen::Vector3d x, q;
+  Eigen::Array3d origin, direction, inverse;
+  double length;
+  QuerySegment(const Eigen::Vector3d& from, const Eigen::Vector3d& to) : x(from), q(to), origin(from.array()) {
+    const Eigen::Vector3d along = to - from;
+    length = along.norm();
+    direction = length > 0.0 ? Eigen::Array3d(along.array() / length) : Eigen::Array3d::Zero();
+    inverse = direction.unaryExpr([](double d) { return d == 0.0 ? 1e300 : 1.0 / d; });
+  }
+};
+
+/// A volume against the query: whether x lies outside it and whether the
+/// segment misses it. Both stay on the safe side: a missed volume never
+/// holds x, and a segment that meets the faces inside is never called missing.
+struct VolumeTest {
+  bool x_outside, segment_misses;
+};
+
+/// A ball, with the relative slack of segment_misses.
+inline VolumeTest test_ball(const SignedBall<3>& ball, const QuerySegment& s) {
+  const Eigen::Array3d w = ball.center.array() - s.origin;
+  const double r2 = ball.radius * ball.radius;
+  const double t = std::clamp((w * s.direction).sum(), 0.0, s.length);
+  return {w.square().sum() > r2, (w - t * s.direction).square().sum() > r2 * (1.0 + 1e-9)};
+}
+
+/// A box (slab test). The box is widened by a relative slack when built, far
+/// more than the rounding here.
+inline VolumeTest test_box(const Eigen::AlignedBox3d& box, const QuerySegment& s) {
+  const Eigen::Array3d lo = box.min().array() - s.origin, hi = box.max().array() - s.origin;
+  const Eigen::Array3d a = lo * s.inverse, b = hi * s.inverse;
+  const double enter = std::max(a.min(b).maxCoeff(), 0.0), leave = std::min(a.max(b).minCoeff(), s.length);
+  return {(lo > 0.0).any() || (hi < 0.0).any(), enter > leave};
+}
+
 /// One ray through the tree: 0/1 parity, 2 on the boundary, -1 degenerate.
-int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eigen::Vector3d& q, InclusionStats& count) {
+int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionStats& count) {
   const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
   bool odd = false;
   const auto add = [&](Crossing3 crossing) {
@@ -152,23 +192,30 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(stack.back())];
     const bool root = stack.back() == 0;
     stack.pop_back();
+    const VolumeTest box = test_box(node.box, s);
+    if (!root && box.segment_misses) continue;  // the faces lie in the box; x is not on them
     if (node.leaf()) {
-      if (segment_misses(node.bound, x, q)) continue;  // x is not on the face either
       const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
       ++count.crossing_tests;
-      const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), x, q));
+      const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), s.x, s.q));
       if (r != 0) return r;
       continue;
     }
     ++count.flintstone_tests;
-    // The localizing volume is F(P) ∩ bound; when F(P) is a union only the
-    // bound is used (the faces and the fan need not lie in a union of balls).
-    const bool beyond_bound = !node.bound.contains(x);
-    const bool beyond_stone = !node.stone.is_union && !node.stone.contains(x);
-    const bool outside = !root && (beyond_bound || beyond_stone);
-    if (outside && (segment_misses(node.bound, x, q) || (!node.stone.is_union && segment_misses(node.stone, x, q))))
-      continue;  // the node's faces lie in F(P) ∩ bound: no crossing
-    if (!outside || node.boundary_count > fan_limit) {
+    // The localizing volume is F(P) ∩ box; when F(P) is a union only the box
+    // is used (the faces and the fan need not lie in a union of balls). A
+    // segment that misses the volume misses the node's faces, and x then lies
+    // outside the volume as well. (The node's bound ball adds nothing here
+    // once the box is tested: measured, it prunes < 1% of the visits.)
+    bool outside = box.x_outside;
+    if (!root && !node.stone.is_union) {
+      const VolumeTest first = test_ball(node.stone.first, s);
+      if (first.segment_misses) continue;
+      const VolumeTest second = test_ball(node.stone.second, s);
+      if (second.segment_misses) continue;
+      outside = outside || first.x_outside || second.x_outside;
+    }
+    if (root || !outside || node.boundary_count > fan_limit) {
       for (int c = 0; c < node.child_count; ++c) stack.push_back(node.first_child + c);
       continue;
     }
@@ -179,7 +226,7 @@ int tree_parity(const FlintstoneTree3& tree, const Eigen::Vector3d& x, const Eig
       const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
       if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
       ++count.crossing_tests;
-      if (add(segment_crossing(apex, point(a), point(b), x, q)) != 0) return -1;  // never on a fan: retry
+      if (add(segment_crossing(apex, point(a), point(b), s.x, s.q)) != 0) return -1;  // never on a fan: retry
     }
   }
   return odd ? 1 : 0;
@@ -194,7 +241,7 @@ bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStat
   ++count.flintstone_tests;
   if (!root.contains(x)) return false;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
-    const int r = tree_parity(tree, x, outward_point(x, attempt, root.first.center, root.first.radius), count);
+    const int r = tree_parity(tree, QuerySegment(x, outward_point(x, attempt, root.first.center, root.first.radius)), count);
     if (r >= 0) return r != 0;
   }
   return inside_brute_force(tree.vertices, tree.faces, x);

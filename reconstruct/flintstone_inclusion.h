@@ -35,8 +35,9 @@ bool inside_brute_force(const Eigen::MatrixX2d& V, const Eigen::Vector2d& x);
 /// triangle (or lies in its plane) is replaced by the next one. A node's
 /// open polyhedron is replaced (Lemma 6.1) by the fan from its first corner
 /// over its boundary edges: the same boundary, so no cracks, and inside the
-/// node's flintstone when that is an intersection of balls (convex). Nodes the
-/// ray misses are skipped (their faces lie in the flintstone); a fan is used
+/// node's volume F(P) ∩ box (convex when the flintstone is an intersection of
+/// balls; the box alone for a union). Nodes whose volume the ray misses are
+/// skipped (their faces lie in it); a fan is used
 /// only while it is short (≤ 4 edges): measured on real meshes, refining a
 /// node the ray hits is cheaper than testing a long fan.
 bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStats* stats = nullptr);

@@ -135,9 +135,10 @@ std::vector<std::array<int, 2>> intersecting_faces(const FlintstoneTree3& a, con
     for (int c = 0; c < node(id, t).child_count; ++c) children.push_back(node(id, t).first_child + c);
   };
   const auto size = [&](int id, int t) { return node(id, t).face_count; };
-  // F(P) ∩ bound localizes each node (see FlintstoneNode3::bound).
+  // F(P) ∩ bound ∩ box localizes each node (see FlintstoneNode3::bound, box).
   const auto meet = [&](int na, int nb) {
-    return balls_meet(node(na, 0).bound, node(nb, 1).bound) && flintstones_meet(node(na, 0).stone, node(nb, 1).stone);
+    return node(na, 0).box.intersects(node(nb, 1).box) && balls_meet(node(na, 0).bound, node(nb, 1).bound) &&
+           flintstones_meet(node(na, 0).stone, node(nb, 1).stone);
   };
   const auto exact = [&](int na, int nb) {
     const int fa = a.face_order[static_cast<std::size_t>(node(na, 0).first_face)];

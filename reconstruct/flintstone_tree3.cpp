@@ -131,6 +131,7 @@ class Builder {
     const double reach = (V_.rowwise() - center.transpose()).rowwise().norm().maxCoeff();
     root.stone = ball_flintstone<3>(center, std::max(radius, reach));
     root.bound = root.stone.first;
+    root.box = vertex_box(on_surface);
     root.face_count = static_cast<int>(F_.rows());
     tree_.face_order.resize(static_cast<std::size_t>(F_.rows()));
     for (int f = 0; f < F_.rows(); ++f) tree_.face_order[static_cast<std::size_t>(f)] = f;
@@ -188,6 +189,7 @@ class Builder {
       node.corners = {face_vertex(f, 0), face_vertex(f, 1), face_vertex(f, 2)};
       node.stone = enclosing_flintstone<3>(V_, {node.corners.begin(), node.corners.end()});
       node.bound = node.stone.first;
+      node.box = vertex_box({node.corners.begin(), node.corners.end()});
       tree_.nodes[static_cast<std::size_t>(id)] = node;
       plan.leaf = true;
       return plan;
@@ -195,6 +197,7 @@ class Builder {
     if (id != 0) {
       gather_vertices(faces);
       node.bound = enclosing_flintstone<3>(V_, vertices_).first;
+      node.box = vertex_box(vertices_);
       for (const int v : vertices_) eligible_[static_cast<std::size_t>(v)] = boundary_mark_[static_cast<std::size_t>(v)] != id;
       node.stone = flintstone_of<3>(V_, node.corners, vertices_, plan.split, &eligible_);
       for (const int v : vertices_) {
@@ -276,6 +279,17 @@ class Builder {
   }
 
   /// vertices_ (local numbering in local_) and boundary_mark_ for node `id`.
+  /// The box of `vertices`, widened so that float tests against it stay on
+  /// the safe side.
+  Eigen::AlignedBox3d vertex_box(const std::vector<int>& vertices) const {
+    Eigen::AlignedBox3d box;
+    for (const int v : vertices) box.extend(point(v));
+    const double slack = 1e-9 * (box.sizes().maxCoeff() + box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff());
+    box.min().array() -= slack;
+    box.max().array() += slack;
+    return box;
+  }
+
   void gather_vertices(const std::vector<int>& faces) {
     vertices_.clear();
     for (const int f : faces)
@@ -680,7 +694,7 @@ int insert_vertex(FlintstoneTree3& tree, int face, const Eigen::Vector3d& point)
   int id = 0;
   while (true) {
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
-    const bool holds = node.stone.contains(point) && node.bound.contains(point);
+    const bool holds = node.stone.contains(point) && node.bound.contains(point) && node.box.contains(point);
     if (!holds || node.leaf()) break;
     for (int c = 0; c < node.child_count; ++c) {
       const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(node.first_child + c)];

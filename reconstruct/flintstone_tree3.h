@@ -16,6 +16,8 @@
 #include "core/triangle_mesh.h"
 #include "reconstruct/flintstone.h"
 
+#include <Eigen/Geometry>
+
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -32,9 +34,14 @@ struct FlintstoneNode3 {
   Flintstone<3> stone;
   /// A ball around P's vertices (centroid, farthest vertex). Not in the
   /// thesis: a union flintstone (Definition 7.2) can be far larger than P,
-  /// so the operations localize by F(P) ∩ bound — still a bounding volume,
+  /// so the operations localize by F(P) ∩ bound ∩ box — still a bounding volume,
   /// and convex whenever F(P) is an intersection.
   SignedBall<3> bound;
+  /// The axis-aligned box of P's vertices, widened by a relative slack. Not
+  /// in the thesis either: it is convex and holds P and the fan over its
+  /// boundary, so it may join the localizing volume (Lemma 6.1 needs only a
+  /// volume that holds both) and it is the cheapest test against a ray.
+  Eigen::AlignedBox3d box;
 
   bool leaf() const { return child_count == 0; }
 };

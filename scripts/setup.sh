@@ -13,6 +13,7 @@ packages=(
   libopencv-contrib-dev  # ximgproc: WLS disparity filtering for stereo
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  umockdev libumockdev-dev  # emulated sysfs/udev/usbfs for the libusb and libgpiod tests
   # public data used by the tests: CGAL's meshes and scans, OpenCV's stereo images
   libcgal-demo opencv-doc
 )

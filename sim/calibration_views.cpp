@@ -72,17 +72,6 @@ std::vector<BoardPlacement> laser_placements(int columns, int rows, double squar
   return placements;
 }
 
-PinholeCamera stereo_partner(const PinholeCamera& left, double baseline, const Point3& target) {
-  const Point3 eye = left.centre() + baseline * left.rotation.row(0).transpose();
-  PinholeCamera right = PinholeCamera::look_at(eye, target, Eigen::Vector3d::UnitZ(), left.width, left.height, 1.0);
-  right.fx = left.fx;
-  right.fy = left.fy;
-  right.cx = left.cx;
-  right.cy = left.cy;
-  right.distortion = left.distortion;
-  return right;
-}
-
 BoardFrames render_board(Scene scene, const BoardPlacement& placement, const PinholeCamera& camera, bool with_lasers,
                          std::uint64_t seed, int supersampling) {
   scene.board = placement.board;

@@ -42,10 +42,6 @@ std::vector<BoardPlacement> turntable_placements(int columns, int rows, double s
 /// planes of the rig's lasers (vertical, through the axis) cross it (laser planes).
 std::vector<BoardPlacement> laser_placements(int columns, int rows, double square);
 
-/// The right camera of a simulated stereo pair: `left`'s intrinsics and lens,
-/// `baseline` to the right of it along its image x axis, looking at `target`.
-PinholeCamera stereo_partner(const PinholeCamera& left, double baseline, const Point3& target);
-
 /// The frames of one placement: laser off, and one per laser of `scene` with
 /// only that laser on (when `with_lasers`), each rendered at `supersampling`×
 /// and area-averaged to the camera's size; sensor noise from `seed`.

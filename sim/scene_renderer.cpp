@@ -74,10 +74,23 @@ std::pair<double, double> board_hit(const ChessboardTarget& board, const Eigen::
   return {t, dark ? board.black : board.white};
 }
 
+// The projector's pattern: one cell per projector pixel, 1 (lit) with
+// probability `fill`, row by row from the seed.
+cv::Mat random_dots(const DotProjector& projector) {
+  if (projector.optics.width <= 0 || projector.optics.height <= 0 || !(projector.fill >= 0 && projector.fill <= 1))
+    throw InvalidInput("scene renderer: the dot projector needs a positive resolution and a fill in [0, 1]");
+  cv::Mat pattern(projector.optics.height, projector.optics.width, CV_8U);
+  Random random(projector.seed);
+  for (int r = 0; r < pattern.rows; ++r)
+    for (int c = 0; c < pattern.cols; ++c) pattern.at<std::uint8_t>(r, c) = random.uniform() < projector.fill;
+  return pattern;
+}
+
 }  // namespace
 
 struct SceneRenderer::Impl {
   Scene scene;
+  cv::Mat dot_pattern;  // of scene.projector, if any
   Eigen::MatrixX3d face_normals;
   RTCDevice device = nullptr;
   RTCScene rtc_scene = nullptr;
@@ -95,6 +108,7 @@ struct SceneRenderer::Impl {
     }
     for (auto& laser : scene.lasers) laser.plane.normal.normalize();
     scene.light_direction.normalize();
+    if (scene.projector) dot_pattern = random_dots(*scene.projector);
 
     device = rtcNewDevice("threads=1");
     if (!device) throw SolverError("scene renderer: Embree could not create a device");
@@ -184,6 +198,7 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
   view.truth.depth = cv::Mat::zeros(rows, cols, CV_64F);
   view.unlit = cv::Mat::zeros(rows, cols, CV_32F);
   for (std::size_t l = 0; l < scene.lasers.size(); ++l) view.laser.push_back(cv::Mat::zeros(rows, cols, CV_32F));
+  if (scene.projector) view.dots = cv::Mat::zeros(rows, cols, CV_32F);
 
   // Everything below happens in the object frame: the platter (a disc at z = 0
   // about the axis) is symmetric, so turning the camera, lights and lasers
@@ -194,6 +209,7 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
   std::vector<LaserPlane> lasers;
   for (const auto& laser : scene.lasers)
     lasers.push_back({to_object * laser.plane.origin, to_object * laser.plane.normal});
+  const Eigen::Vector3d projector_origin = scene.projector ? to_object * scene.projector->optics.centre() : eye;
   const double scale = std::max(1.0, (eye.norm()));
   const double epsilon = 1e-5 * scale;
 
@@ -248,6 +264,20 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
         view.laser[l].at<float>(r, c) =
             static_cast<float>(scene.lasers[l].power * beam * blinn_phong(*material, normal, to_laser, to_eye));
       }
+      if (scene.projector) {
+        // The projector's light: the pattern cell the point sees from the
+        // projector, unless the object shadows it.
+        const auto cell = scene.projector->optics.project(turntable_rotation(turntable_angle) * p);
+        if (!cell) continue;
+        const int u = static_cast<int>(std::lround(cell->x())), v = static_cast<int>(std::lround(cell->y()));
+        if (u < 0 || v < 0 || u >= impl_->dot_pattern.cols || v >= impl_->dot_pattern.rows ||
+            !impl_->dot_pattern.at<std::uint8_t>(v, u))
+          continue;
+        const Eigen::Vector3d to_projector = (projector_origin - p).normalized();
+        if (normal.dot(to_projector) <= 0 || impl_->occluded(p, projector_origin, epsilon)) continue;
+        view.dots.at<float>(r, c) =
+            static_cast<float>(scene.projector->power * blinn_phong(*material, normal, to_projector, to_eye));
+      }
     }
   });
 
@@ -259,8 +289,9 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
 }
 
 cv::Mat SceneRenderer::expose(const RenderedView& view, const std::vector<int>& lasers_on, std::uint64_t seed,
-                              const SensorModel& sensor) const {
+                              const SensorModel& sensor, bool projector_on) const {
   cv::Mat radiance = view.unlit.clone();
+  if (projector_on && !view.dots.empty()) radiance += view.dots;
   for (const int l : lasers_on) {
     if (l < 0 || static_cast<std::size_t>(l) >= view.laser.size())
       throw InvalidInput("scene renderer: there is no laser " + std::to_string(l));

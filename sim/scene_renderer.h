@@ -1,5 +1,6 @@
 // A ray-cast turntable scene (Embree): a mesh object on a platter, line
-// lasers, ambient and one directional room light, seen by pinhole cameras with
+// lasers, an optional random-dot projector, ambient and one directional room
+// light, seen by pinhole cameras with
 // lens distortion, with a sensor model (speckle, defocus, shot and read noise,
 // 8-bit quantisation). Ground truth for every pixel.
 //
@@ -28,6 +29,22 @@ struct LineLaser {
   double beam_sigma = 0.25;
   double power = 400.0;
   double speckle_contrast = 0.05;  // standard deviation of the multiplicative speckle
+};
+
+/// A random-dot projector (the active texture of stereo rigs): a pinhole
+/// projector casting a seeded pattern of lit and dark cells, one per
+/// projector pixel, onto the scene, shadowed by the object, so that
+/// texture-less surfaces give a stereo matcher something to match.
+/// optics  pose, field, resolution and lens of the projector; its image is
+///         the pattern
+/// power   irradiance of a lit cell on a surface facing it (grey levels for albedo 1)
+/// fill    fraction of lit cells
+/// seed    the pattern: the same seed gives the same dots on every machine
+struct DotProjector {
+  PinholeCamera optics;
+  double power = 110.0;
+  double fill = 0.5;
+  std::uint64_t seed = 1;
 };
 
 /// Surface reflectance: Lambertian albedo plus a Blinn–Phong lobe.
@@ -70,6 +87,7 @@ struct Scene {
   Material platter_material{0.25, 0.02, 10.0};
   std::vector<LineLaser> lasers;
   std::optional<ChessboardTarget> board;
+  std::optional<DotProjector> projector;
   double ambient = 40.0;                                     // grey levels for albedo 1
   Eigen::Vector3d light_direction{0.3, -0.5, 1.0};           // towards the room light
   double light_intensity = 90.0;                             // grey levels for albedo 1
@@ -90,10 +108,13 @@ struct GroundTruth {
 /// unlit      CV_32F, ambient + room light, in grey levels
 /// laser      one CV_32F per laser: its light reflected to the camera (0 in
 ///            its shadow or where the camera does not see its spot)
+/// dots       CV_32F, the projector's pattern reflected to the camera (empty
+///            without a projector)
 struct RenderedView {
   GroundTruth truth;
   cv::Mat unlit;
   std::vector<cv::Mat> laser;
+  cv::Mat dots;
 };
 
 class SceneRenderer {
@@ -113,9 +134,10 @@ class SceneRenderer {
   /// An 8-bit grey frame (CV_8U) of a cast view with the lasers whose index is
   /// in `lasers_on` switched on. Speckle is fixed per view and laser (a
   /// property of the surface and the optics), the sensor noise comes from
-  /// `seed`: same view, lasers and seed → the same bytes.
+  /// `seed`: same view, lasers and seed → the same bytes. The dot projector
+  /// (if the scene has one) shines when `projector_on`.
   cv::Mat expose(const RenderedView& view, const std::vector<int>& lasers_on, std::uint64_t seed,
-                 const SensorModel& sensor = {}) const;
+                 const SensorModel& sensor = {}, bool projector_on = true) const;
 
  private:
   struct Impl;

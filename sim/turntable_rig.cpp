@@ -6,18 +6,25 @@
 
 namespace scanstation::sim {
 
+RigViewpoint rig_viewpoint(double object_height, double platter_radius, double distance_factor, double margin) {
+  RigViewpoint view;
+  view.distance = distance_factor * std::max(object_height, platter_radius);
+  view.target = Point3{0, 0, 0.5 * object_height};
+  view.eye = Point3{0, -view.distance, 0.5 * object_height + 0.35 * view.distance};
+  const double half_extent = margin * std::max(platter_radius, 0.75 * object_height);
+  view.fov = 2.0 * std::atan(half_extent / view.distance);
+  return view;
+}
+
 TurntableLaserRig turntable_laser_rig(double object_height, double platter_radius, int width, int height,
                                       double laser_angle) {
   if (!(object_height > 0) || !(platter_radius > 0))
     throw InvalidInput("turntable rig: object height and platter radius must be positive");
-  const double distance = 4.0 * std::max(object_height, platter_radius);
-  const Point3 target{0, 0, 0.5 * object_height};
-  const Point3 eye{0, -distance, 0.5 * object_height + 0.35 * distance};
-  // Frame the platter and the object's height, whichever needs more.
-  const double half_extent = 1.15 * std::max(platter_radius, 0.75 * object_height);
-  const double fov = 2.0 * std::atan(half_extent / distance);
+  const RigViewpoint view = rig_viewpoint(object_height, platter_radius, 4.0, 1.15);
+  const double distance = view.distance;
+  const Point3& target = view.target;
   TurntableLaserRig rig;
-  rig.camera = PinholeCamera::look_at(eye, target, Eigen::Vector3d::UnitZ(), width, height, fov);
+  rig.camera = PinholeCamera::look_at(view.eye, target, Eigen::Vector3d::UnitZ(), width, height, view.fov);
   rig.camera.distortion = {-0.08, 0.03, 0.0, 0.0004, -0.0003};
   const double beam_sigma = 0.8 * distance / rig.camera.fx;  // about 0.8 px at the axis
   for (const double side : {-1.0, 1.0}) {

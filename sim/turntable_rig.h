@@ -15,6 +15,16 @@ struct TurntableLaserRig {
   std::vector<LineLaser> lasers;
 };
 
+/// Where a rig's camera stands: `distance_factor` × max(object height,
+/// platter radius) in front of the object (−y), a little above it, looking at
+/// its middle, with a horizontal field of view that frames the platter and
+/// the object's height, whichever needs more, with `margin` (1.1 = 10%) around.
+struct RigViewpoint {
+  Point3 eye, target;
+  double distance = 0, fov = 0;
+};
+RigViewpoint rig_viewpoint(double object_height, double platter_radius, double distance_factor, double margin);
+
 /// A rig for an object of height `object_height` (station units) on a platter
 /// of radius `platter_radius`, with a width × height camera whose field of
 /// view frames the platter.

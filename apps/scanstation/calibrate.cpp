@@ -12,6 +12,7 @@
 #include "core/version.h"
 #include "image_list.h"
 #include "sim/calibration_views.h"
+#include "sim/stereo_rig.h"
 #include "sim/turntable_rig.h"
 #include "station_options.h"
 
@@ -73,7 +74,7 @@ class CalibrateCommand final : public Command {
     stereo->add_option("--left", left_images_, "Left chessboard images (files, folders, list files)");
     stereo->add_option("--right", right_images_, "Right images of the same boards, in the same order");
     stereo->add_flag("--sample-flags", sample_flags_, "Use the flags of OpenCV's stereo_calib sample (the reference)");
-    stereo->add_option("--baseline", sim_baseline_, "With --backend sim: distance between the cameras (mm)")
+    stereo->add_option("--baseline", sim_baseline_, "With --backend sim: distance between the cameras, a fraction of the viewing distance")
         ->capture_default_str();
     for (CLI::App* sub : {camera, turntable, laser, stereo}) sub->fallthrough();
   }
@@ -321,10 +322,10 @@ class CalibrateCommand final : public Command {
     refuse_replacing(calibration.stereo.has_value(), "a stereo calibration (" + (calibration.stereo ? calibration.stereo->date : "") + ")");
     std::vector<cv::Mat> left, right;
     if (sim_) {
-      const PinholeCamera partner =
-          sim::stereo_partner(rig_.camera, sim_baseline_, {0.0, 0.0, 0.5 * sim_object_height});
-      left = sim_board_images(context, rig_.camera, 1);
-      right = sim_board_images(context, partner, 5000);
+      const sim::StereoRig pair =
+          sim::stereo_rig(sim_object_height, sim_platter_radius, size_.width, size_.height, sim_baseline_);
+      left = sim_board_images(context, pair.left, 1);
+      right = sim_board_images(context, pair.right, 5000);
     } else {
       left = read_images(left_images_, "stereo --left");
       right = read_images(right_images_, "stereo --right");
@@ -361,7 +362,7 @@ class CalibrateCommand final : public Command {
   int sim_views_ = 9;
   std::optional<int> laser_;
   acquisition::LaserPlaneOptions laser_options_;
-  double sim_baseline_ = 60.0;
+  double sim_baseline_ = 0.2;
 
   drivers::StationDescription description_;
   cv::Size board_, size_;

@@ -4,7 +4,6 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "drivers/frame_gate.h"
-#include "drivers/safe_state.h"
 #include "sim/devices/open_station.h"
 #include "station_options.h"
 
@@ -26,9 +25,7 @@ class CaptureCommand final : public Command {
 
   void run(CommandContext& context) override {
     const unsigned roles = laser_ ? sim::camera_role | sim::laser_role : sim::camera_role;
-    auto station = sim::open_station(options_.description(), roles);
-    drivers::SafeStateGuard guard;
-    guard.add("station safe state", [&] { station->make_safe(); });
+    sim::GuardedStation station(options_.description(), roles);
     for (const auto& note : station->notes) context.log->warn("{}", note);
     if (laser_ && (*laser_ < 0 || *laser_ >= static_cast<int>(station->lasers.size())))
       throw InvalidInput("--laser " + std::to_string(*laser_) + ": the station has " +

@@ -4,7 +4,6 @@
 #include "command.h"
 #include "core/errors.h"
 #include "core/log.h"
-#include "drivers/safe_state.h"
 #include "sim/devices/open_station.h"
 #include "station_options.h"
 
@@ -29,9 +28,7 @@ class LaserCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    auto station = sim::open_station(options_.description(), sim::laser_role);
-    drivers::SafeStateGuard guard;
-    guard.add("station safe state", [&] { station->make_safe(); });
+    sim::GuardedStation station(options_.description(), sim::laser_role);
     if (index_ < 0 || index_ >= static_cast<int>(station->lasers.size()))
       throw InvalidInput("laser " + std::to_string(index_) + ": the station has " +
                          std::to_string(station->lasers.size()) + " laser(s)");

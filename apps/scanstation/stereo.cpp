@@ -1,15 +1,28 @@
 // scanstation stereo LEFT RIGHT -o DISP.png: dense disparity of a rectified
 // pair (SGBM, left–right check, post-filter); with --truth, the Middlebury
 // bad-pixel rates against a ground-truth disparity image.
+// scanstation stereo --backend sim -o POINTS.ply: the simulated stereo rig
+// captures an object at N turntable angles; the views are reconstructed and
+// fused into one cloud in the object frame.
+#include "acquisition/scan_accuracy.h"
 #include "acquisition/stereo_matcher.h"
+#include "acquisition/stereo_reconstruction.h"
+#include "acquisition/view_fusion.h"
 #include "command.h"
+#include "core/bounding_box.h"
 #include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "sim/sampling.h"
+#include "sim/shapes.h"
+#include "sim/stereo_rig.h"
+#include "sim/surface_of_revolution.h"
 
 #include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <optional>
 
 namespace scanstation::app {
@@ -28,13 +41,44 @@ nlohmann::json rate_json(const acquisition::BadPixelRate& r) {
           {"valid_truth_pixels", r.valid_pixels}};
 }
 
+// The built-in objects of the simulated stereo capture (millimetres, standing
+// on the platter).
+TriangleMesh builtin_object(const std::string& name) {
+  if (name == "sphere") {
+    TriangleMesh sphere = sim::ellipsoid(Eigen::Vector3d::Constant(30.0), 6);
+    sphere.vertices.positions.rowwise() += Eigen::RowVector3d(6.0, -4.0, 30.0);
+    return sphere;
+  }
+  return sim::surface_of_revolution(40.0 * (name == "chalice" ? sim::chalice_profile(300) : sim::candlestick_profile(300)),
+                                    720);
+}
+
 class StereoCommand final : public Command {
  public:
   explicit StereoCommand(CLI::App& parent)
-      : Command(parent, "stereo", "Dense disparity of a rectified stereo pair (SGBM + left-right check + filtering)") {
-    cli_->add_option("left", left_, "Left rectified image")->required();
-    cli_->add_option("right", right_, "Right rectified image")->required();
-    cli_->add_option("-o,--output", output_, "Disparity image (.png)")->required();
+      : Command(parent, "stereo",
+                "Dense disparity of a rectified stereo pair (SGBM + left-right check + filtering), or with --backend "
+                "sim a simulated stereo capture at several turntable angles fused into one point cloud") {
+    cli_->add_option("left", left_, "Left rectified image");
+    cli_->add_option("right", right_, "Right rectified image");
+    cli_->add_option("-o,--output", output_, "Disparity image (.png); with --backend sim the fused points (.ply, ...)")
+        ->required();
+    cli_->add_option("--backend", backend_, "sim: capture with the simulated stereo rig instead of reading a pair")
+        ->check(CLI::IsMember({"sim"}));
+    cli_->add_option("--object", object_, "Simulated object: sphere, chalice or candlestick")
+        ->check(CLI::IsMember({"sphere", "chalice", "candlestick"}))
+        ->capture_default_str();
+    cli_->add_option("--views", views_, "Turntable angles, evenly spaced over a turn")
+        ->check(CLI::Range(1, 3600))
+        ->capture_default_str();
+    cli_->add_option("--width", width_, "Simulated camera width (px)")->check(CLI::Range(64, 8192))->capture_default_str();
+    cli_->add_option("--height", height_, "Simulated camera height (px)")->check(CLI::Range(48, 8192))->capture_default_str();
+    cli_->add_flag("!--no-projector", projector_, "Switch the random-dot projector off");
+    cli_->add_option("--seed", seed_, "Sensor noise seed")->capture_default_str();
+    cli_->add_option("--voxel", fusion_.voxel, "Fusion cube side (mm)")->capture_default_str();
+    cli_->add_option("--min-views", fusion_.minimum_views, "Views a fused point needs")->capture_default_str();
+    cli_->add_option("--outlier-radius", fusion_.outlier_radius, "Isolated-point radius after fusion (mm, 0 = keep all)")
+        ->capture_default_str();
     cli_->add_option("--encoding", encoding_,
                      "fixed16: 16-bit, disparity x 16 (OpenCV's convention); pixels8: 8-bit whole pixels like "
                      "Middlebury ground truth (clamped to 255); 0 = no disparity in both")
@@ -63,11 +107,20 @@ class StereoCommand final : public Command {
 
   void run(CommandContext& context) override {
     io::check_writable(output_, context.overwrite);
-    if (output_.extension() != ".png") throw InvalidInput("-o " + output_.string() + ": expected a .png file name");
     const std::map<std::string, acquisition::DisparityPostFilter> post{
         {"fill", acquisition::DisparityPostFilter::fill},
         {"wls", acquisition::DisparityPostFilter::wls},
         {"none", acquisition::DisparityPostFilter::none}};
+    if (backend_) {
+      if (!left_.empty() || !right_.empty()) throw InvalidInput("stereo --backend sim captures its own images: drop LEFT RIGHT");
+      // Filled gaps would be invented geometry: only matched pixels, unless asked.
+      options_.post_filter = cli_->count("--post") ? post.at(post_) : acquisition::DisparityPostFilter::none;
+      if (!cli_->count("--median")) options_.median_size = 0;
+      simulate(context);
+      return;
+    }
+    if (left_.empty() || right_.empty()) throw InvalidInput("stereo: give LEFT and RIGHT images, or --backend sim");
+    if (output_.extension() != ".png") throw InvalidInput("-o " + output_.string() + ": expected a .png file name");
     options_.post_filter = post.at(post_);
     const acquisition::StereoOptions options = plain_ ? acquisition::plain_sgbm_options() : options_;
 
@@ -106,7 +159,68 @@ class StereoCommand final : public Command {
   }
 
  private:
+  // Renders both cameras at each turntable angle, reconstructs each view in
+  // the object frame, fuses them, writes the cloud.
+  void simulate(CommandContext& context) {
+    constexpr double platter_radius = 60.0;
+    const TriangleMesh object = builtin_object(object_);
+    const Eigen::AlignedBox3d box = bounding_box(object.vertices.positions);
+    const double height = box.max().z();
+    const sim::StereoRig rig = sim::stereo_rig(height, platter_radius, width_, height_);
+    const sim::SceneRenderer renderer(sim::stereo_scene(object, rig, platter_radius, projector_));
+    acquisition::StereoStation station = acquisition::stereo_station(rig.left, rig.right);
+    acquisition::StereoReconstructionOptions options;
+    options.matcher = acquisition::fit_disparity_range(station, platter_radius, height, options_);
+    // The object's own cylinder: beyond it lie the platter's rim and the void.
+    options.maximum_radius = object.vertices.positions.leftCols(2).rowwise().norm().maxCoeff() + 2.0;
+
+    std::vector<acquisition::LaserScanPoints> views;
+    nlohmann::json per_view = nlohmann::json::array();
+    const ProgressCallback progress = context.progress.stage("capture and match");
+    StageTimer capture_timer(context.report, "capture_and_match");
+    for (int v = 0; v < views_; ++v) {
+      const double angle = 2.0 * std::numbers::pi * v / views_;
+      const std::uint64_t seed = seed_ + 2 * static_cast<std::uint64_t>(v);
+      const sim::RenderedView left_view = renderer.cast(rig.left, angle);
+      const cv::Mat left = renderer.expose(left_view, {}, seed);
+      const cv::Mat right = renderer.expose(renderer.cast(rig.right, angle), {}, seed + 1);
+      // The colours from a frame without the dots, as a real rig would take.
+      const cv::Mat plain = renderer.expose(left_view, {}, seed, {}, false);
+      views.push_back(acquisition::stereo_view_points(station, left, right, angle, options, plain));
+      per_view.push_back({{"angle", angle}, {"points", views.back().cloud.size()}});
+      if (progress) progress(static_cast<double>(v + 1) / views_);
+    }
+    context.progress.finish();
+    capture_timer.stop();
+    StageTimer fuse_timer(context.report, "fuse");
+    const acquisition::LaserScanPoints fused = acquisition::fuse_views(views, fusion_);
+    fuse_timer.stop();
+    StageTimer write_timer(context.report, "write");
+    io::write_points(output_, fused.cloud, {std::nullopt, std::nullopt, context.overwrite});
+    write_timer.stop();
+
+    const double diagonal = box.diagonal().norm();
+    const double covered = acquisition::coverage(sim::sample_surface(object, 4000, 9).positions, fused.cloud.positions,
+                                                 0.02 * diagonal);
+    nlohmann::json& result = context.report["result"];
+    result["object"] = object_;
+    result["projector"] = projector_;
+    result["disparity_range"] = {options.matcher.min_disparity, options.matcher.num_disparities};
+    result["views"] = per_view;
+    result["fused_points"] = fused.cloud.size();
+    result["coverage"] = covered;
+    std::printf("%d views of the %s (projector %s): %lld points fused, %.1f%% of its surface covered\n", views_,
+                object_.c_str(), projector_ ? "on" : "off", static_cast<long long>(fused.cloud.size()), 100 * covered);
+    std::printf("wrote %s\n", output_.c_str());
+  }
+
   std::filesystem::path left_, right_, output_;
+  std::optional<std::string> backend_;
+  std::string object_ = "sphere";
+  int views_ = 8, width_ = 640, height_ = 480;
+  bool projector_ = true;
+  std::uint64_t seed_ = 1;
+  acquisition::FusionOptions fusion_{0.5, 2, 1.5, 4};
   std::optional<std::filesystem::path> truth_;
   std::string encoding_ = "fixed16", post_ = "fill";
   bool plain_ = false;

@@ -1,6 +1,5 @@
 // scanstation turntable: rotate by or to an angle, or seek the home switch.
 #include "command.h"
-#include "drivers/safe_state.h"
 #include "sim/devices/open_station.h"
 #include "station_options.h"
 
@@ -23,9 +22,7 @@ class TurntableCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    auto station = sim::open_station(options_.description(), sim::turntable_role);
-    drivers::SafeStateGuard guard;
-    guard.add("station safe state", [&] { station->make_safe(); });
+    sim::GuardedStation station(options_.description(), sim::turntable_role);
     drivers::Turntable& table = *station->turntable;
     StageTimer timer(context.report, "motion");
     const drivers::Timestamp start = station->clock->now();

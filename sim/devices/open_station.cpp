@@ -8,6 +8,8 @@
 #include "sim/devices/sim_camera.h"
 #include "sim/devices/virtual_clock.h"
 
+#include <cmath>
+
 namespace scanstation::sim {
 
 namespace {
@@ -28,7 +30,7 @@ SimGpioChip& sim_chip(OpenStation& station, const StationDescription& d) {
   if (!station.sim_chip) {
     std::vector<std::string> names;
     for (std::size_t i = 0; i < d.lasers.size(); ++i) names.push_back("LASER" + std::to_string(i));
-    for (const char* name : {"STEP", "DIR", "EN"}) names.emplace_back(name);
+    for (const char* name : {"STEP", "DIR", "EN", "HOME"}) names.emplace_back(name);
     station.sim_chip = std::make_unique<SimGpioChip>("simchip0", names, *station.clock, d.sim_state_file);
   }
   return *station.sim_chip;
@@ -99,9 +101,14 @@ void open_turntable(OpenStation& station, const StationDescription& d) {
     if (role.home) lines.home = station.gpio->request_input(*role.home, d.consumer);
   } else {
     SimGpioChip& chip = sim_chip(station, d);
+    const auto steps_per_rev = std::llround(role.stepper.steps_per_rev());
+    station.sim_motor = std::make_unique<SimStepperMotor>(
+        chip, SimStepperMotorConfig{steps_per_rev, std::llround(d.sim_table_angle_deg / 360.0 * double(steps_per_rev)),
+                                    std::max<std::int64_t>(1, steps_per_rev / 360)});
     lines.step = chip.request_output({"", {}, "STEP"}, d.consumer, false);
     lines.direction = chip.request_output({"", {}, "DIR"}, d.consumer, false);
     lines.enable = chip.request_output({"", {}, "EN"}, d.consumer, false);
+    lines.home = chip.request_input({"", {}, "HOME"}, d.consumer);
   }
   station.turntable = std::make_unique<drivers::StepperTurntable>(std::move(lines), *station.clock, role.stepper);
 }
@@ -112,18 +119,33 @@ void OpenStation::make_safe() {
   auto log = room_logger("drivers");
   for (auto& laser : lasers) {
     try {
-      laser->set(false);
+      laser->shut_down();
     } catch (const std::exception& e) {
       log->error("safe state: laser {}: {}", laser->describe(), e.what());
     }
   }
   if (turntable) {
     try {
-      turntable->disable();
+      turntable->shut_down();
     } catch (const std::exception& e) {
       log->error("safe state: turntable: {}", e.what());
     }
   }
+  if (usb) {
+    try {
+      usb->shut_down();
+    } catch (const std::exception& e) {
+      log->error("safe state: USB board: {}", e.what());
+    }
+  }
+  if (camera) camera->restore_controls();
+}
+
+GuardedStation::GuardedStation(const StationDescription& description, unsigned roles) {
+  // In the body, not the initialiser list: guard_ exists before the first
+  // line is requested. Added after a signal fired, the action runs at once.
+  station_ = open_station(description, roles);
+  guard_.add("station safe state", [this] { station_->make_safe(); });
 }
 
 std::unique_ptr<OpenStation> open_station(const StationDescription& d, unsigned roles) {

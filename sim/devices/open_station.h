@@ -1,6 +1,7 @@
 // Opens the devices a station description names, real or simulated, behind
 // the driver interfaces. Simulated roles share one simulated GPIO chip
-// ("simchip0": LASER0.., STEP, DIR, EN) and, for "usb" roles of a simulated
+// ("simchip0": LASER0.., STEP, DIR, EN, HOME; a simulated stepper motor on
+// STEP/DIR/EN closes HOME at angle 0) and, for "usb" roles of a simulated
 // station, one simulated board. When every opened role is simulated the
 // station runs on a virtual clock (as fast as the machine allows).
 #pragma once
@@ -9,10 +10,12 @@
 #include "drivers/clock.h"
 #include "drivers/gpiod_lines.h"
 #include "drivers/laser.h"
+#include "drivers/safe_state.h"
 #include "drivers/station_description.h"
 #include "drivers/turntable.h"
 #include "drivers/usb_controller.h"
 #include "sim/devices/sim_gpio_chip.h"
+#include "sim/devices/sim_stepper_motor.h"
 #include "sim/devices/sim_usb_board.h"
 
 #include <memory>
@@ -28,6 +31,7 @@ enum StationRole : unsigned { camera_role = 1, laser_role = 2, turntable_role = 
 struct OpenStation {
   std::unique_ptr<drivers::Clock> clock;
   std::unique_ptr<SimGpioChip> sim_chip;
+  std::unique_ptr<SimStepperMotor> sim_motor;  // the table on sim_chip's stepper lines
   std::unique_ptr<drivers::GpiodProvider> gpio;
   std::unique_ptr<SimUsbBoard> sim_board;
   std::unique_ptr<drivers::UsbController> usb;
@@ -36,12 +40,31 @@ struct OpenStation {
   std::unique_ptr<drivers::Turntable> turntable;
   std::vector<std::string> notes;  // what was adjusted while opening (format, control values)
 
-  /// Lasers off and motor disabled; failures are logged, never thrown.
+  /// Lasers off and motor disabled for good (Laser/Turntable/UsbController
+  /// shut_down(): later switch-ons throw), camera controls restored; safe to
+  /// call from the safe-state thread while another thread uses the devices.
+  /// Failures are logged, never thrown.
   void make_safe();
 };
 
 /// Opens the roles in `roles` (a StationRole mask). Throws DeviceError/DeviceGone
 /// naming the device when one is missing.
 std::unique_ptr<OpenStation> open_station(const drivers::StationDescription& description, unsigned roles);
+
+/// open_station() under a SafeStateGuard installed before the first device is
+/// opened, so SIGINT/SIGTERM/SIGHUP at any moment — while lines are requested,
+/// during a move — leaves the station safe (see drivers/safe_state.h). The
+/// guard makes the station safe when this object is destroyed too. One per
+/// process, like the guard.
+class GuardedStation {
+ public:
+  GuardedStation(const drivers::StationDescription& description, unsigned roles);
+  OpenStation& operator*() { return *station_; }
+  OpenStation* operator->() { return station_.get(); }
+
+ private:
+  std::unique_ptr<OpenStation> station_;  // declared first: outlives the guard's last make_safe
+  drivers::SafeStateGuard guard_;
+};
 
 }  // namespace scanstation::sim

@@ -171,9 +171,13 @@ std::vector<std::uint8_t> SimUsbBoard::execute(const usb::Message& request) {
       case Command::home:
         in.finish();
         if (moving) return status_only(Status::busy);
-        // The switch sits at a whole turn; seek it backwards.
+        // The switch sits at a whole turn; seek it backwards (without a
+        // switch the board gives up after one revolution).
         homing_ = true;
-        start_move(position_ - ((position_ % config_.steps_per_rev) + config_.steps_per_rev) % config_.steps_per_rev);
+        homed_ = false;
+        start_move(config_.home_switch ? position_ - ((position_ % config_.steps_per_rev) + config_.steps_per_rev) %
+                                                          config_.steps_per_rev
+                                       : position_ - config_.steps_per_rev);
         return status_only(Status::ok);
       case Command::safe:
         in.finish();
@@ -200,7 +204,7 @@ void SimUsbBoard::start_move(std::int64_t target) {
 
 void SimUsbBoard::update_motion() {
   if (move_times_.empty()) {
-    if (homing_) position_ = 0, homed_ = true, homing_ = false;  // already at the switch
+    if (homing_) finish_homing();  // already at the switch
     return;
   }
   const double elapsed = drivers::to_seconds(clock_.now() - move_start_);
@@ -208,7 +212,13 @@ void SimUsbBoard::update_motion() {
   position_ = move_from_ + (move_to_ > move_from_ ? done : -done);
   if (done < static_cast<long>(move_times_.size())) return;
   move_times_.clear();
-  if (homing_) position_ = 0, homed_ = true, homing_ = false;  // the switch defines 0
+  if (homing_) finish_homing();
+}
+
+void SimUsbBoard::finish_homing() {
+  homing_ = false;
+  homed_ = config_.home_switch;
+  if (homed_) position_ = 0;  // the switch defines 0
 }
 
 bool SimUsbBoard::laser(int index) const {

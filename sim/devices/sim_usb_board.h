@@ -32,6 +32,7 @@ struct SimUsbBoardConfig {
   std::uint32_t steps_per_rev = 200 * 16;
   int laser_count = 2;
   std::uint8_t version[3] = {1, 2, 0};
+  bool home_switch = true;  // false: HOME turns a full revolution backwards and stops without the homed flag
 };
 
 class SimUsbBoard {
@@ -62,6 +63,7 @@ class SimUsbBoard {
   std::vector<std::uint8_t> execute(const drivers::usb::Message& request);
   void start_move(std::int64_t target);
   void update_motion();
+  void finish_homing();
   void corrupt(std::vector<std::uint8_t>& reply, UsbFault fault) const;
 
   drivers::Clock& clock_;

@@ -88,6 +88,66 @@ TEST(LaserLine, RegionOfInterestLimitsTheSearch) {
   test::expect_error<InvalidInput>([&] { extract_laser_line(colour, colour); }, {"8-bit single-channel"});
 }
 
+// A horizontal stripe (the transposed pair), searched per column: the same
+// sub-pixel accuracy as the row search, now in y.
+TEST(LaserLine, SubPixelCentresOfAHorizontalStripePerColumn) {
+  const auto [on, off] = stripe_pair(centre_of_row, 1.3, 150, 0.0, 1);
+  cv::Mat on_t, off_t;
+  cv::transpose(on, on_t);
+  cv::transpose(off, off_t);
+  for (const auto& [fit, tolerance] : {std::pair{PeakFit::gaussian, 0.03}, std::pair{PeakFit::centre_of_mass, 0.06},
+                                      std::pair{PeakFit::parabolic, 0.15}}) {
+    LaserLineOptions options;
+    options.fit = fit;
+    options.stripe = StripeDirection::horizontal;
+    const LaserLine line = extract_laser_line(on_t, off_t, options);
+    ASSERT_EQ(line.peaks.size(), 64u);
+    double worst = 0;
+    for (std::size_t i = 0; i < line.peaks.size(); ++i) {
+      const LinePeak& p = line.peaks[i];
+      EXPECT_EQ(p.x, static_cast<double>(i));  // column order
+      worst = std::max(worst, std::abs(p.y - centre_of_row(static_cast<int>(p.x))));
+    }
+    EXPECT_LT(worst, tolerance) << static_cast<int>(fit);
+  }
+}
+
+// Column search on the transposed frames = row search on the frames, peak for
+// peak, with noisy frames, rejections and a region of interest.
+TEST(LaserLine, ColumnSearchIsTheRowSearchTransposed) {
+  auto [on, off] = stripe_pair([](int r) { return 60.0 + 25 * std::sin(0.15 * r); }, 1.6, 120, 3.0, 12);
+  // A second stripe in the top rows: double peaks, rejected.
+  const cv::Mat second = stripe_pair([](int r) { return 150.0 + 0.2 * r; }, 1.3, 100, 0.0, 13).first;
+  cv::Mat top = on.rowRange(0, 20);
+  cv::max(top, second.rowRange(0, 20), top);
+  for (const cv::Rect region : {cv::Rect(), cv::Rect(20, 5, 170, 50)}) {
+    LaserLineOptions rows;
+    rows.region = region;
+    rows.fit = PeakFit::centre_of_mass;
+    const LaserLine by_row = extract_laser_line(on, off, rows);
+    cv::Mat on_t, off_t;
+    cv::transpose(on, on_t);
+    cv::transpose(off, off_t);
+    LaserLineOptions columns = rows;
+    columns.stripe = StripeDirection::horizontal;
+    columns.region = cv::Rect(region.y, region.x, region.height, region.width);
+    const LaserLine by_column = extract_laser_line(on_t, off_t, columns);
+    ASSERT_GT(by_row.peaks.size(), 20u);
+    ASSERT_EQ(by_column.peaks.size(), by_row.peaks.size());
+    EXPECT_EQ(by_column.noise_sigma, by_row.noise_sigma);
+    EXPECT_EQ(by_column.threshold, by_row.threshold);
+    for (std::size_t i = 0; i < by_row.peaks.size(); ++i) {
+      EXPECT_EQ(by_column.peaks[i].x, by_row.peaks[i].y);
+      EXPECT_EQ(by_column.peaks[i].y, by_row.peaks[i].x);
+      EXPECT_EQ(by_column.peaks[i].confidence, by_row.peaks[i].confidence);
+    }
+  }
+  LaserLineOptions outside;
+  outside.stripe = StripeDirection::horizontal;
+  outside.region = cv::Rect(0, 150, 10, 100);  // rows 150.. of a 64-row frame
+  test::expect_error<InvalidInput>([&] { extract_laser_line(on, off, outside); }, {"outside the frame"});
+}
+
 TEST(LaserTriangulation, RecoversPointsOfTheLightPlaneThroughADistortedLens) {
   PinholeCamera camera = PinholeCamera::look_at({0, -300, 150}, {0, 0, 40}, Eigen::Vector3d::UnitZ(), 1280, 960, 0.5);
   camera.distortion = {-0.2, 0.08, -0.01, 0.001, -0.0007};

@@ -76,7 +76,12 @@ TEST(DevicesCli, TurntableAndLaserOnTheSimulatedStation) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(slurp(dir / "t.json"))["angle_deg"].get<double>(), -90.0);
   EXPECT_EQ(scanstation("turntable --rotate 10 --to 20").exit_code, 1);
-  EXPECT_EQ(scanstation("turntable --home --backend sim").exit_code, 2) << "the simulated stepper has no switch";
+  // The simulated table stands at 123° and closes its home switch at 0°.
+  std::ofstream(dir / "home.toml") << "[sim]\ntable_angle_deg = 123.0\n";
+  r = scanstation("turntable --home --station " + (dir / "home.toml").string() + " --report " + (dir / "h.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(slurp(dir / "h.json"))["angle_deg"].get<double>(), 0.0);
+  EXPECT_GT(nlohmann::json::parse(slurp(dir / "h.json"))["motion_s"].get<double>(), 123.0 / 10.0) << "sought at 10°/s";
   r = scanstation("laser 1 on --hold 0.05 --station " + kStations + "sim.toml");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, testing::HasSubstr("laser 1 (simchip0:1 (LASER1)) on"));

@@ -3,6 +3,7 @@
 // that holds a simulated GPIO chip mirrored into a state file, kill it, and
 // read the levels the child left behind.
 #include "core/errors.h"
+#include "drivers/device_error.h"
 #include "drivers/laser.h"
 #include "drivers/safe_state.h"
 #include "drivers/stepper_turntable.h"
@@ -11,7 +12,10 @@
 #include "test_support.h"
 
 #include <csignal>
+#include <fcntl.h>
+#include <fstream>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 
 namespace scanstation::drivers {
@@ -114,6 +118,168 @@ TEST(SafeState, WithoutTheGuardAKilledChildLeavesTheLaserOn) {
   const auto [levels, signal_number] = kill_child_station(SIGTERM, false);
   EXPECT_EQ(levels, (std::vector<bool>{true, false, true, true}));
   EXPECT_EQ(signal_number, SIGTERM);
+}
+
+TEST(SafeState, ShutDownLatchesLaserTurntableAndBoardOff) {
+  Station station;
+  station.laser.set(true);
+  station.table.rotate_by(10.0);
+  station.laser.shut_down();
+  station.table.shut_down();
+  EXPECT_FALSE(station.chip.level(0));
+  EXPECT_FALSE(station.chip.level(3));
+  test::expect_error<DeviceError>([&] { station.laser.set(true); }, {"LASER0", "held off by the safe state"});
+  EXPECT_NO_THROW(station.laser.set(false));
+  test::expect_error<DeviceError>([&] { station.table.rotate_by(10.0); }, {"stopped by the safe state"});
+  EXPECT_FALSE(station.chip.level(3)) << "the refused move did not enable the motor";
+}
+
+// Records the order of every transition of a chip (the listener runs inside
+// the writer's own lock, so the order is the order of the writes).
+struct TransitionLog {
+  std::mutex mutex;
+  std::vector<sim::Transition> transitions;
+  void attach(sim::SimGpioChip& chip) {
+    chip.on_transition([this](const sim::Transition& t) {
+      std::lock_guard lock(mutex);
+      transitions.push_back(t);
+    });
+  }
+};
+
+// After the first moment `line` went low, no line in `active_lines` went high again.
+void expect_nothing_active_after_off(const std::vector<sim::Transition>& log, unsigned line,
+                                     std::initializer_list<unsigned> active_lines) {
+  const auto off = std::find_if(log.begin(), log.end(), [&](const auto& t) { return t.line == line && !t.level; });
+  ASSERT_NE(off, log.end()) << "line " << line << " was never switched off";
+  for (auto it = off; it != log.end(); ++it)
+    for (const unsigned l : active_lines)
+      EXPECT_FALSE(it->line == l && it->level) << "line " << l << " went high after line " << line << " went off";
+}
+
+TEST(SafeState, ShutDownFromAnotherThreadStopsAMoveAtItsNextStep) {
+  Station station;
+  TransitionLog log;
+  log.attach(station.chip);
+  std::atomic<int> edges{0};
+  station.chip.on_transition([&](const sim::Transition& t) { edges += t.line == 1 && t.level; });
+  std::thread safe_state([&] {
+    while (edges.load() < 100) std::this_thread::yield();
+    station.laser.shut_down();
+    station.table.shut_down();
+  });
+  station.laser.set(true);
+  test::expect_error<DeviceError>([&] { station.table.rotate_by(36000.0); }, {"stopped by the safe state"});
+  safe_state.join();
+  EXPECT_LT(station.table.position(), 320000) << "the move ended early";
+  EXPECT_GE(station.table.position(), 100);
+  std::lock_guard lock(log.mutex);
+  expect_nothing_active_after_off(log.transitions, 3, {1, 3});
+  EXPECT_FALSE(station.chip.level(0));
+  EXPECT_FALSE(station.chip.level(1));
+  EXPECT_FALSE(station.chip.level(3));
+}
+
+// A child moves the table in real time with the laser on, reporting its
+// transitions to a journal file (written inside the writers' locks, so in
+// order), and is killed with SIGTERM after `delay` of motion. Returns the
+// levels and the journal it left.
+struct KilledChild {
+  std::vector<bool> levels;
+  std::vector<sim::Transition> journal;
+  int signal_number = -1;
+};
+
+KilledChild kill_child_mid_move(std::chrono::microseconds delay, bool report_before_requests = false) {
+  test::ScratchFolder folder;
+  const auto file = folder / "lines", journal_file = folder / "journal";
+  int ready[2];
+  if (pipe(ready) != 0) throw std::runtime_error("pipe");
+  const pid_t child = fork();
+  if (child == 0) {
+    close(ready[0]);
+    SafeStateGuard guard;  // before the lines are requested: a signal during the requests is handled too
+    if (report_before_requests) [[maybe_unused]] auto n = write(ready[1], "R", 1);
+    MonotonicClock clock;
+    sim::SimGpioChip chip("simchip0", {"LASER0", "STEP", "DIR", "EN"}, clock, file);
+    const int journal = open(journal_file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    bool reported = false;
+    chip.on_transition([&](const sim::Transition& t) {
+      const std::string line = std::to_string(t.line) + " " + (t.level ? "1" : "0") + "\n";
+      [[maybe_unused]] auto n = write(journal, line.data(), line.size());
+      if (t.line == 1 && t.level && !reported && !report_before_requests) {
+        reported = true;  // the first step edge: the move is under way
+        n = write(ready[1], "R", 1);
+      }
+    });
+    Laser laser(chip.request_output({"", 0u, ""}, "test", false), clock, 1ms);
+    StepperConfig config;
+    // Fast stepping (a pulse every ~30 µs) keeps the main thread writing
+    // lines while the watcher works (the latch itself is shown
+    // deterministically by ShutDownFromAnotherThreadStopsAMoveAtItsNextStep).
+    config.max_speed_deg_s = 3600;
+    config.acceleration_deg_s2 = 36000;  // 100 turns take 10 s: killed long before the end
+    StepperTurntable table(StepperLines{chip.request_output({"", 1u, ""}, "test", false),
+                                        chip.request_output({"", 2u, ""}, "test", false),
+                                        chip.request_output({"", 3u, ""}, "test", false), nullptr},
+                           clock, config);
+    guard.add("laser off", [&] { laser.shut_down(); });
+    guard.add("motor off", [&] { table.shut_down(); });
+    try {
+      laser.set(true);
+      table.rotate_by(36000.0);
+    } catch (const DeviceError&) {
+      // stopped by the safe state; the guard ends the process
+    }
+    for (;;) pause();
+  }
+  close(ready[1]);
+  char byte = 0;
+  EXPECT_EQ(read(ready[0], &byte, 1), 1) << "the child started moving";
+  close(ready[0]);
+  std::this_thread::sleep_for(delay);
+  kill(child, SIGTERM);
+  int status = 0;
+  waitpid(child, &status, 0);
+  KilledChild result;
+  if (std::filesystem::exists(file)) result.levels = sim::SimGpioChip::read_state_file(file);  // else killed before the chip existed
+  result.signal_number = WIFSIGNALED(status) ? WTERMSIG(status) : -1;
+  std::ifstream in(journal_file);
+  for (unsigned line = 0, level = 0; in >> line >> level;) result.journal.push_back({line, level == 1, {}});
+  return result;
+}
+
+TEST(SafeState, SigtermMidMoveLeavesTheLinesOffAndTheJournalShowsNoLaterActivity) {
+  // Several kill moments, from the first step on, to hit the signal at
+  // different points of the pulse loop.
+  for (const auto delay : {0us, 300us, 2000us, 15000us}) {
+    const KilledChild child = kill_child_mid_move(delay);
+    EXPECT_EQ(child.signal_number, SIGTERM) << "the child still dies of the signal";
+    ASSERT_EQ(child.levels.size(), 4u);
+    EXPECT_FALSE(child.levels[0]) << "laser off after a kill " << delay.count() << " µs into the move";
+    EXPECT_FALSE(child.levels[1]) << "STEP low";
+    EXPECT_FALSE(child.levels[3]) << "motor disabled";
+    ASSERT_FALSE(child.journal.empty());
+    EXPECT_GT(std::count_if(child.journal.begin(), child.journal.end(), [](const auto& t) { return t.line == 1 && t.level; }),
+              0) << "the child was stepping";
+    expect_nothing_active_after_off(child.journal, 3, {0, 1, 3});
+    expect_nothing_active_after_off(child.journal, 0, {0});
+  }
+}
+
+TEST(SafeState, SigtermWhileTheLinesAreRequestedStillEndsSafe) {
+  // The child reports before it opens anything; the kill lands while the chip
+  // is created, the lines are requested, the actions registered or the laser
+  // switched on. Whatever the moment, nothing is left on.
+  for (const auto delay : {0us, 20us, 50us, 100us, 200us, 400us}) {
+    const KilledChild child = kill_child_mid_move(delay, true);
+    EXPECT_EQ(child.signal_number, SIGTERM);
+    for (std::size_t line : {0u, 1u, 3u})
+      if (line < child.levels.size()) EXPECT_FALSE(child.levels[line]) << "line " << line << ", kill after " << delay.count() << " µs";
+    if (!child.journal.empty()) {
+      expect_nothing_active_after_off(child.journal, 3, {0, 1, 3});
+    }
+  }
 }
 
 }  // namespace

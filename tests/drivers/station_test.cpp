@@ -72,6 +72,34 @@ TEST(OpenStation, SimulatedStationScansSettledPairsAndEndsSafe) {
   station.reset();  // normal end
 }
 
+TEST(OpenStation, SimulatedTableHomesOnItsSwitch) {
+  StationDescription d;
+  d.sim_table_angle_deg = 200.0;  // where the table happens to stand at power-up
+  auto station = sim::open_station(d, sim::turntable_role);
+  ASSERT_TRUE(station->sim_motor);
+  station->turntable->rotate_by(30.0);
+  EXPECT_EQ(station->sim_motor->position(), 1778 + 267) << "start 200° plus 30°, each rounded to microsteps";
+  station->turntable->home();
+  EXPECT_EQ(station->sim_motor->position() % 3200, 0) << "physically at the switch";
+  EXPECT_DOUBLE_EQ(station->turntable->angle(), 0.0);
+  station->make_safe();
+  test::expect_error<DeviceError>([&] { station->turntable->rotate_by(1.0); }, {"stopped by the safe state"});
+}
+
+TEST(OpenStation, GuardedStationEndsSafe) {
+  test::ScratchFolder folder;
+  StationDescription d;
+  d.sim_state_file = folder / "lines";  // LASER0, STEP, DIR, EN, HOME
+  {
+    sim::GuardedStation station(d, sim::laser_role | sim::turntable_role);
+    station->lasers[0]->set(true);
+    station->turntable->rotate_by(10.0);
+    EXPECT_EQ(sim::SimGpioChip::read_state_file(d.sim_state_file), (std::vector<bool>{true, false, true, true, false}));
+    EXPECT_THROW(sim::GuardedStation(d, sim::laser_role), InvalidInput) << "one guard per process";
+  }
+  EXPECT_EQ(sim::SimGpioChip::read_state_file(d.sim_state_file), (std::vector<bool>{false, false, true, false, false}));
+}
+
 TEST(OpenStation, UsbRolesOfASimulatedStationSpeakTheProtocol) {
   StationDescription d;
   d.lasers = {LaserRole{"usb", {}, 1, 2ms}};

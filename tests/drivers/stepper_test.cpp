@@ -4,6 +4,7 @@
 #include "drivers/stepper_turntable.h"
 #include "drivers/trapezoid_ramp.h"
 #include "sim/devices/sim_gpio_chip.h"
+#include "sim/devices/sim_stepper_motor.h"
 #include "sim/devices/virtual_clock.h"
 #include "test_support.h"
 
@@ -121,8 +122,54 @@ TEST(StepperTurntable, HomesOnTheSwitchAndDisablesOnDestruction) {
 TEST(StepperTurntable, HomeWithoutSwitchFailsClearly) {
   Rig rig;
   test::expect_error<DeviceError>([&] { rig.table->home(); }, {"no home switch"});
-  Rig homeless({}, true);  // a switch that never closes
-  test::expect_error<DeviceError>([&] { homeless.table->home(); }, {"not reached within one revolution"});
+  StepperConfig config;
+  config.home_overtravel_deg = 5.0;
+  Rig homeless(config, true);  // a switch that never closes
+  homeless.table->rotate_by(90.0);
+  test::expect_error<DeviceError>([&] { homeless.table->home(); },
+                                  {"home switch simchip0:3 (HOME)", "within 365.0° (3245 steps)", "wiring"});
+  // The search is bounded: exactly the maximum travel backwards, then stopped.
+  EXPECT_EQ(homeless.table->position(), 800 - 3245);
+  Rig stuck({}, true);
+  stuck.chip.drive(3, true);  // closed and never opening
+  test::expect_error<DeviceError>([&] { stuck.table->home(); }, {"stays active", "stuck closed"});
+}
+
+// The simulated table (sim/devices/sim_stepper_motor.h) closes HOME at its
+// physical angle 0; homing from anywhere lands exactly there.
+TEST(StepperTurntable, HomesOnTheSimulatedTableSwitchFromAnyAngle) {
+  for (const double start_deg : {123.4, 0.0, -5.0, 359.9, 720.0 + 17.0}) {
+    VirtualClock clock;
+    SimGpioChip chip{"simchip0", {"STEP", "DIR", "EN", "HOME"}, clock};
+    const std::int64_t n = 3200;
+    sim::SimStepperMotor motor(chip, {n, std::llround(start_deg / 360.0 * n), 9});
+    StepperLines lines{chip.request_output({"", {}, "STEP"}, "test", false),
+                       chip.request_output({"", {}, "DIR"}, "test", false),
+                       chip.request_output({"", {}, "EN"}, "test", false), chip.request_input({"", {}, "HOME"}, "test")};
+    StepperTurntable table(std::move(lines), clock, {});
+    table.home();
+    EXPECT_EQ(((motor.position() % n) + n) % n, 0) << "started at " << start_deg << "°";
+    EXPECT_DOUBLE_EQ(table.angle(), 0.0);
+    EXPECT_TRUE(chip.level(3)) << "at home the switch is closed";
+    table.rotate_by(90.0);
+    EXPECT_EQ(((motor.position() % n) + n) % n, 800) << "angles count from the switch";
+    EXPECT_FALSE(chip.level(3));
+    EXPECT_EQ(motor.lost_steps(), 0);
+  }
+}
+
+TEST(SimStepperMotor, StepsWhileTheDriverIsDisabledAreLost) {
+  VirtualClock clock;
+  SimGpioChip chip{"simchip0", {"STEP", "DIR", "EN"}, clock};
+  sim::SimStepperMotor motor(chip, {3200, 0, 9});
+  auto step = chip.request_output({"", {}, "STEP"}, "test", false);
+  auto dir = chip.request_output({"", {}, "DIR"}, "test", true);
+  auto enable = chip.request_output({"", {}, "EN"}, "test", false);
+  for (int i = 0; i < 3; ++i) step->set(true), step->set(false);
+  enable->set(true);
+  for (int i = 0; i < 5; ++i) step->set(true), step->set(false);
+  EXPECT_EQ(motor.position(), 5);
+  EXPECT_EQ(motor.lost_steps(), 3);
 }
 
 }  // namespace

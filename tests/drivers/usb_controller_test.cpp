@@ -145,6 +145,35 @@ TEST(UsbController, InjectedFaultsEndInClearErrorsAndTheLinkRecovers) {
   EXPECT_FALSE(rig.board.laser(0));
 }
 
+TEST(UsbController, ShutDownHoldsTheBoardSafe) {
+  BoardRig rig;
+  UsbTurntable table(rig.controller, rig.clock, {});
+  UsbLaserOutput laser(rig.controller, 0);
+  laser.set(true);
+  table.rotate_by(10.0);
+  table.shut_down();
+  EXPECT_FALSE(rig.board.laser(0));
+  EXPECT_FALSE(rig.board.motor_enabled());
+  test::expect_error<DeviceError>([&] { laser.set(true); }, {"LASER refused", "held in its safe state"});
+  test::expect_error<DeviceError>([&] { table.rotate_by(10.0); }, {"MOVE refused"});
+  test::expect_error<DeviceError>([&] { table.home(); }, {"HOME refused"});
+  EXPECT_NO_THROW(laser.set(false)) << "switching off stays allowed";
+  EXPECT_NO_THROW(rig.controller.status());
+  EXPECT_FALSE(rig.board.laser(0));
+}
+
+TEST(UsbController, BoardWithoutHomeSwitchFailsToHomeClearly) {
+  sim::VirtualClock clock;
+  sim::SimUsbBoardConfig config;
+  config.home_switch = false;
+  sim::SimUsbBoard board(clock, config);
+  UsbController controller(board.endpoints(), 200ms);
+  UsbTurntable table(controller, clock, {});
+  table.rotate_by(45.0);
+  test::expect_error<DeviceError>([&] { table.home(); }, {"home switch not found"});
+  EXPECT_EQ(board.position(), 400 - 3200) << "the board searched one revolution backwards, then stopped";
+}
+
 TEST(UsbController, MalformedRequestsAreAnsweredWithAReason) {
   sim::VirtualClock clock;
   sim::SimUsbBoard board(clock);

@@ -157,5 +157,23 @@ TEST(V4l2Camera, ControlsByNameAreClampedAndRestoredOnExit) {
   EXPECT_FALSE(rig.device.streaming());
 }
 
+TEST(V4l2Camera, SafeStateRestoresControlsWhileStreaming) {
+  // What the safe-state path does on a signal (OpenStation::make_safe):
+  // controls go back while the stream runs; a later change is recorded anew.
+  Rig rig;
+  V4l2Camera camera(EmulatedV4l2Device::kPath, rig.device, rig.clock);
+  camera.set_control("auto_exposure", 1);
+  camera.set_control("exposure", 100);
+  camera.start();
+  camera.grab(200ms);
+  camera.restore_controls();
+  EXPECT_EQ(rig.device.control_value(V4L2_CID_EXPOSURE_ABSOLUTE), rig.device.control_default(V4L2_CID_EXPOSURE_ABSOLUTE));
+  EXPECT_EQ(rig.device.control_value(V4L2_CID_EXPOSURE_AUTO), rig.device.control_default(V4L2_CID_EXPOSURE_AUTO));
+  EXPECT_NO_THROW(camera.grab(200ms)) << "streaming goes on";
+  camera.set_control("gain", 50);
+  camera.restore_controls();
+  EXPECT_EQ(rig.device.control_value(V4L2_CID_GAIN), rig.device.control_default(V4L2_CID_GAIN));
+}
+
 }  // namespace
 }  // namespace scanstation::drivers
