@@ -5,6 +5,10 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
 #include <string>
 
 namespace scanstation::acquisition {
@@ -15,8 +19,21 @@ std::optional<std::vector<cv::Point2f>> find_chessboard(const cv::Mat& image, cv
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(grey, inner_corners, corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
     return std::nullopt;
-  cv::cornerSubPix(grey, corners, {11, 11}, {-1, -1},
+  // The refinement window must stay inside the squares around a corner: at
+  // most 11 px (OpenCV's sample), less for a board seen small.
+  double spacing = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < inner_corners.height; ++r)
+    for (int c = 0; c + 1 < inner_corners.width; ++c) {
+      const cv::Point2f d = corners[std::size_t(r * inner_corners.width + c + 1)] - corners[std::size_t(r * inner_corners.width + c)];
+      spacing = std::min(spacing, std::sqrt(static_cast<double>(d.dot(d))));
+    }
+  const int half = std::clamp(static_cast<int>(0.4 * spacing), 2, 11);
+  cv::cornerSubPix(grey, corners, {half, half}, {-1, -1},
                    cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 30, 0.01));
+  // OpenCV may start at either end of the board; start at the top so that a
+  // corner keeps its index while the board turns (turntable calibration).
+  const cv::Point2f first = corners.front(), last = corners.back();
+  if (first.y > last.y || (first.y == last.y && first.x > last.x)) std::reverse(corners.begin(), corners.end());
   return corners;
 }
 
@@ -34,13 +51,48 @@ CameraIntrinsics calibrate_camera(const std::vector<std::vector<cv::Point2f>>& c
     throw InvalidInput("camera calibration: " + std::to_string(corners.size()) + " chessboard views; at least 3 are needed");
   const std::vector<std::vector<cv::Point3f>> objects(corners.size(), chessboard_points(inner_corners, square_size));
   CameraIntrinsics camera;
-  cv::Mat K, distortion, per_view;
+  cv::Mat K, distortion, per_view, deviations;
   std::vector<cv::Mat> rvecs, tvecs;
-  camera.rms = cv::calibrateCamera(objects, corners, image_size, K, distortion, rvecs, tvecs, cv::noArray(),
+  camera.rms = cv::calibrateCamera(objects, corners, image_size, K, distortion, rvecs, tvecs, deviations,
                                    cv::noArray(), per_view, fix_k3 ? cv::CALIB_FIX_K3 : 0);
   camera.camera_matrix = K;
   camera.distortion = distortion;
   camera.per_view_rms.assign(per_view.begin<double>(), per_view.end<double>());
+  // Board normals (third column of each rotation): Zhang's method needs the
+  // board planes to differ, else the focal length trades off against the distance.
+  double widest = 0;
+  std::vector<cv::Vec3d> normals;
+  for (const cv::Mat& rvec : rvecs) {
+    cv::Matx33d R;
+    cv::Rodrigues(rvec, R);
+    normals.emplace_back(R(0, 2), R(1, 2), R(2, 2));
+  }
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    for (std::size_t j = i + 1; j < normals.size(); ++j)
+      widest = std::max(widest, std::acos(std::clamp(normals[i].dot(normals[j]), -1.0, 1.0)));
+  constexpr double degree = std::numbers::pi / 180.0;
+  // The fit's own uncertainty of fx catches the same degeneracy when noise
+  // makes the (wrongly fitted) normals look different.
+  const double fx_uncertainty = deviations.at<double>(0) / K.at<double>(0, 0);
+  if (widest < 5.0 * degree || !(fx_uncertainty < 0.05))
+    throw InvalidInput("camera calibration: the board is nearly parallel in all " + std::to_string(corners.size()) +
+                       " views (at most " + std::to_string(widest / degree).substr(0, 4) +
+                       " degrees apart, focal length ±" + std::to_string(100 * fx_uncertainty).substr(0, 4) +
+                       "%); tilt and turn it between views (by 10 degrees or more)");
+  return camera;
+}
+
+PinholeCamera pinhole_camera(const CameraIntrinsics& intrinsics, cv::Size image_size) {
+  PinholeCamera camera;
+  camera.width = image_size.width;
+  camera.height = image_size.height;
+  camera.fx = intrinsics.camera_matrix(0, 0);
+  camera.fy = intrinsics.camera_matrix(1, 1);
+  camera.cx = intrinsics.camera_matrix(0, 2);
+  camera.cy = intrinsics.camera_matrix(1, 2);
+  const cv::Mat& d = intrinsics.distortion;
+  const auto coefficient = [&](int i) { return static_cast<int>(d.total()) > i ? d.at<double>(i) : 0.0; };
+  camera.distortion = {coefficient(0), coefficient(1), coefficient(4), coefficient(2), coefficient(3)};
   return camera;
 }
 

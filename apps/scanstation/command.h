@@ -58,5 +58,6 @@ std::unique_ptr<Command> make_turntable_command(CLI::App& parent);
 std::unique_ptr<Command> make_laser_command(CLI::App& parent);
 std::unique_ptr<Command> make_scan_command(CLI::App& parent);
 std::unique_ptr<Command> make_replay_command(CLI::App& parent);
+std::unique_ptr<Command> make_calibrate_command(CLI::App& parent);
 
 }  // namespace scanstation::app

@@ -43,6 +43,7 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_laser_command(cli));
   commands.push_back(app::make_scan_command(cli));
   commands.push_back(app::make_replay_command(cli));
+  commands.push_back(app::make_calibrate_command(cli));
 
   try {
     cli.parse(argc, argv);

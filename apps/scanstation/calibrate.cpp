@@ -1,0 +1,377 @@
+// scanstation calibrate camera|turntable|laser|stereo -o CALIBRATION.json:
+// one part of the station's calibration file from real images or, with
+// --backend sim, from chessboard views rendered by the simulator.
+#include "acquisition/board_pose.h"
+#include "acquisition/camera_calibration.h"
+#include "acquisition/laser_plane_calibration.h"
+#include "acquisition/station_calibration.h"
+#include "acquisition/stereo_calibration.h"
+#include "acquisition/turntable_axis_calibration.h"
+#include "command.h"
+#include "core/errors.h"
+#include "core/version.h"
+#include "image_list.h"
+#include "sim/calibration_views.h"
+#include "sim/stereo_rig.h"
+#include "sim/turntable_rig.h"
+#include "station_options.h"
+
+#include <opencv2/core/eigen.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <optional>
+
+namespace scanstation::app {
+
+namespace {
+
+using acquisition::StationCalibration;
+using nlohmann::json;
+
+constexpr double degree = std::numbers::pi / 180.0;
+// The simulated rig: a platter of 60 mm radius framed for an 80 mm object.
+constexpr double sim_object_height = 80.0, sim_platter_radius = 60.0;
+
+double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(std::abs(a.normalized().dot(b.normalized())), 0.0, 1.0));
+}
+
+class CalibrateCommand final : public Command {
+ public:
+  explicit CalibrateCommand(CLI::App& parent)
+      : Command(parent, "calibrate", "Calibrate the station: camera, turntable axis, laser planes, stereo pair") {
+    cli_->require_subcommand(1);
+    station_.add_to(*cli_);
+    cli_->add_option("-o,--output", output_,
+                     "Station calibration file (JSON): created, or updated with this part (replacing a part "
+                     "already there needs --force)")
+        ->required();
+    cli_->add_option("--board", board_text_, "Inner corners of the chessboard, COLUMNSxROWS")->capture_default_str();
+    cli_->add_option("--square", square_, "Square size of the chessboard (mm)")->capture_default_str();
+
+    CLI::App* camera = cli_->add_subcommand("camera", "Intrinsics and lens distortion from chessboard views");
+    camera->add_option("images", images_, "Chessboard images: files, folders, or list files (.txt)");
+    camera->add_flag("--free-k3", free_k3_, "Also fit k3 (wide-angle lenses)");
+
+    CLI::App* turntable = cli_->add_subcommand("turntable", "Turntable axis and platter origin (needs the camera part)");
+    turntable->add_option("images", images_, "The board on the platter at several turntable angles (in order)");
+    turntable->add_option("--angles", angles_deg_, "Turntable angle of each image (degrees)")->delimiter(',');
+    turntable->add_option("--step", step_deg_, "Images taken every STEP degrees from 0 (instead of --angles)");
+    turntable->add_option("--lowest-corner-height", lowest_corner_height_,
+                          "Height of the board's lowest inner corner above the platter top (mm)");
+    turntable->add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")->capture_default_str();
+
+    CLI::App* laser = cli_->add_subcommand("laser", "Laser light plane(s) from the stripe on the board (needs turntable)");
+    laser->add_option("--laser", laser_, "Index of the laser (required with images; sim: all lasers)");
+    laser->add_option("--off", off_images_, "Board images with the laser off (corners)");
+    laser->add_option("--on", on_images_, "The same board poses with the laser on, in the same order");
+    laser->add_option("--inlier-distance", laser_options_.inlier_distance, "RANSAC inlier band (mm)")->capture_default_str();
+
+    CLI::App* stereo = cli_->add_subcommand("stereo", "Stereo pair: both cameras and their relative pose");
+    stereo->add_option("--left", left_images_, "Left chessboard images (files, folders, list files)");
+    stereo->add_option("--right", right_images_, "Right images of the same boards, in the same order");
+    stereo->add_flag("--sample-flags", sample_flags_, "Use the flags of OpenCV's stereo_calib sample (the reference)");
+    stereo->add_option("--baseline", sim_baseline_, "With --backend sim: distance between the cameras, a fraction of the viewing distance")
+        ->capture_default_str();
+    for (CLI::App* sub : {camera, turntable, laser, stereo}) sub->fallthrough();
+  }
+
+  void run(CommandContext& context) override {
+    if (std::sscanf(board_text_.c_str(), "%dx%d", &board_.width, &board_.height) != 2 || board_.width < 2 ||
+        board_.height < 2)
+      throw InvalidInput("--board " + board_text_ + ": expected COLUMNSxROWS inner corners, e.g. 9x6");
+    if (!(square_ > 0)) throw InvalidInput("--square: expected a positive size");
+    description_ = station_.description();
+    size_ = {description_.camera.format.size.width, description_.camera.format.size.height};
+    sim_ = station_.backend == "sim";
+    if (sim_ && !(images_.empty() && off_images_.empty() && on_images_.empty() && left_images_.empty() &&
+                  right_images_.empty()))
+      throw InvalidInput("calibrate: give images or --backend sim, not both");
+    if (sim_) rig_ = sim::turntable_laser_rig(sim_object_height, sim_platter_radius, size_.width, size_.height);
+    StationCalibration calibration = open_calibration(context);
+    const std::string part = cli_->get_subcommands().front()->get_name();
+    json& result = context.report["result"];
+    result["part"] = part;
+    if (part == "camera") calibrate_camera(context, calibration, result);
+    if (part == "turntable") calibrate_turntable(context, calibration, result);
+    if (part == "laser") calibrate_lasers(context, calibration, result);
+    if (part == "stereo") calibrate_stereo(context, calibration, result);
+    calibration.updated = acquisition::calibration_date();
+    calibration.software_version = kVersion;
+    acquisition::write_station_calibration(output_, calibration, existed_ ? io::Overwrite::replace : io::Overwrite::refuse);
+    result["calibration_file"] = output_.string();
+    std::printf("wrote %s\n", output_.c_str());
+  }
+
+ private:
+  // The file to update (refused when it belongs to other devices, unless
+  // --force starts it afresh), or a new one.
+  StationCalibration open_calibration(const CommandContext& context) {
+    existed_ = std::filesystem::exists(output_);
+    force_ = context.overwrite == io::Overwrite::replace;
+    if (existed_) {
+      StationCalibration existing = acquisition::read_station_calibration(output_);
+      try {
+        acquisition::check_calibration_matches(existing, description_);
+        return existing;
+      } catch (const InvalidInput& e) {
+        if (!force_) throw InvalidInput(std::string(e.what()) + " (or use --force to start it afresh)");
+        context.log->warn("{}: made for other devices, starting it afresh", output_.string());
+      }
+    }
+    StationCalibration fresh;
+    fresh.created = acquisition::calibration_date();
+    fresh.station = acquisition::station_fingerprint(description_);
+    return fresh;
+  }
+
+  void refuse_replacing(bool present, const std::string& what) const {
+    if (present && !force_)
+      throw InvalidInput(output_.string() + " already holds " + what + "; use --force to replace it");
+  }
+
+  std::vector<cv::Mat> read_images(const std::vector<std::string>& arguments, const char* what) const {
+    if (!sim_ && arguments.empty()) throw InvalidInput(std::string(what) + ": no images given (or use --backend sim)");
+    std::vector<cv::Mat> images;
+    for (const auto& path : expand_images(arguments)) images.push_back(read_grey_image(path, size_));
+    return images;
+  }
+
+  sim::Scene sim_scene() const {
+    sim::Scene scene;
+    scene.platter_radius = sim_platter_radius;
+    scene.lasers = rig_.lasers;
+    if (description_.lasers.size() > scene.lasers.size())
+      throw InvalidInput("--backend sim: the simulated rig has " + std::to_string(scene.lasers.size()) +
+                         " lasers, the station " + std::to_string(description_.lasers.size()));
+    scene.lasers.resize(description_.lasers.size());
+    return scene;
+  }
+
+  // Renders the placements (sim) with a progress bar; laser-off frames and, with lasers, one laser-on frame per laser.
+  std::vector<sim::BoardFrames> render(CommandContext& context, const std::vector<sim::BoardPlacement>& placements,
+                                       const PinholeCamera& camera, bool lasers, std::uint64_t seed) const {
+    const sim::Scene scene = sim_scene();
+    const ProgressCallback progress = context.progress.stage("render");
+    std::vector<sim::BoardFrames> frames;
+    for (const sim::BoardPlacement& placement : placements) {
+      frames.push_back(sim::render_board(scene, placement, camera, lasers, seed + 10 * frames.size()));
+      if (progress) progress(static_cast<double>(frames.size()) / static_cast<double>(placements.size()));
+    }
+    context.progress.finish();
+    return frames;
+  }
+
+  std::vector<cv::Mat> sim_board_images(CommandContext& context, const PinholeCamera& camera, std::uint64_t seed) const {
+    std::vector<cv::Mat> images;
+    for (sim::BoardFrames& f : render(context, sim::camera_placements(board_.width, board_.height, square_), camera, false, seed))
+      images.push_back(f.laser_off);
+    return images;
+  }
+
+  void calibrate_camera(CommandContext& context, StationCalibration& calibration, json& result) {
+    refuse_replacing(calibration.camera.has_value(), "a camera calibration (" + (calibration.camera ? calibration.camera->date : "") + ")");
+    const std::vector<cv::Mat> images = sim_ ? sim_board_images(context, rig_.camera, 1) : read_images(images_, "camera");
+    StageTimer timer(context.report, "calibrate");
+    std::vector<std::vector<cv::Point2f>> corners;
+    for (const cv::Mat& image : images)
+      if (const auto found = acquisition::find_chessboard(image, board_)) corners.push_back(*found);
+    const acquisition::CameraIntrinsics intrinsics = acquisition::calibrate_camera(corners, board_, square_, size_, !free_k3_);
+    acquisition::CameraPart part;
+    part.date = acquisition::calibration_date();
+    part.views = corners.size();
+    part.camera = acquisition::pinhole_camera(intrinsics, size_);
+    part.rms = intrinsics.rms;
+    part.per_view_rms = intrinsics.per_view_rms;
+    for (const std::string& dropped : acquisition::set_camera(calibration, part))
+      context.log->warn("the new camera calibration invalidates the {} part: recalibrate it", dropped);
+    const PinholeCamera& c = part.camera;
+    result["views"] = {{"given", images.size()}, {"used", corners.size()}};
+    result["camera"] = {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}};
+    result["residuals"] = {{"rms_px", part.rms}, {"per_view_rms_px", part.per_view_rms}};
+    if (sim_)
+      result["truth"] = {{"fx_error", c.fx / rig_.camera.fx - 1.0}, {"fy_error", c.fy / rig_.camera.fy - 1.0}};
+    std::printf("camera: board found in %zu of %zu images, RMS %.3f px, fx %.2f fy %.2f cx %.2f cy %.2f\n",
+                corners.size(), images.size(), part.rms, c.fx, c.fy, c.cx, c.cy);
+  }
+
+  void calibrate_turntable(CommandContext& context, StationCalibration& calibration, json& result) {
+    if (!calibration.camera)
+      throw InvalidInput(output_.string() + " has no camera calibration: run `scanstation calibrate camera` first");
+    refuse_replacing(calibration.turntable.has_value(), "a turntable calibration (" + (calibration.turntable ? calibration.turntable->date : "") + ")");
+    std::vector<cv::Mat> images;
+    std::vector<double> angles;
+    double lowest = lowest_corner_height_.value_or(0.0);
+    if (sim_) {
+      const auto placements = sim::turntable_placements(board_.width, board_.height, square_, sim_views_);
+      for (sim::BoardFrames& f : render(context, placements, rig_.camera, false, 1000)) images.push_back(f.laser_off);
+      for (const sim::BoardPlacement& p : placements) angles.push_back(p.angle);
+      if (!lowest_corner_height_) lowest = sim::lowest_corner_height(placements.front().board);
+    } else {
+      images = read_images(images_, "turntable");
+      if (!lowest_corner_height_)
+        throw InvalidInput("turntable: --lowest-corner-height is needed (the board does not show where the platter is)");
+      if (!angles_deg_.empty() == step_deg_.has_value())
+        throw InvalidInput("turntable: give the angles with either --angles or --step");
+      for (std::size_t i = 0; i < images.size(); ++i)
+        angles.push_back((step_deg_ ? *step_deg_ * static_cast<double>(i) : i < angles_deg_.size() ? angles_deg_[i] : 0) * degree);
+      if (!angles_deg_.empty() && angles_deg_.size() != images.size())
+        throw InvalidInput("turntable: " + std::to_string(images.size()) + " images but " +
+                           std::to_string(angles_deg_.size()) + " --angles");
+    }
+    StageTimer timer(context.report, "calibrate");
+    const PinholeCamera& camera = calibration.camera->camera;
+    std::vector<acquisition::BoardPose> poses;
+    std::vector<double> used_angles;
+    for (std::size_t i = 0; i < images.size(); ++i)
+      if (const auto corners = acquisition::find_chessboard(images[i], board_)) {
+        poses.push_back(acquisition::board_pose(*corners, board_, square_, camera));
+        used_angles.push_back(angles[i]);
+      }
+    const acquisition::TurntableAxis axis =
+        acquisition::calibrate_turntable_axis(poses, used_angles, board_, square_, lowest);
+    acquisition::TurntablePart part;
+    part.date = acquisition::calibration_date();
+    part.axis_camera = axis.direction;
+    part.origin_camera = axis.origin;
+    part.angles = used_angles;
+    part.measured_angles = axis.measured_angles;
+    part.rms = axis.rms;
+    part.max = axis.max;
+    part.angle_rms = axis.angle_rms;
+    acquisition::set_turntable(calibration, part);
+    result["views"] = {{"given", images.size()}, {"used", poses.size()}};
+    result["residuals"] = {{"rms_mm", axis.rms}, {"max_mm", axis.max}, {"angle_rms_deg", axis.angle_rms / degree}};
+    if (sim_) {
+      const PinholeCamera& placed = calibration.camera->camera;
+      result["truth"] = {{"axis_error_deg", angle_between(axis.direction, rig_.camera.rotation.col(2)) / degree},
+                         {"camera_centre_error_mm", (placed.centre() - rig_.camera.centre()).norm()}};
+    }
+    std::printf("turntable: board found at %zu of %zu angles, circle RMS %.4f mm (max %.4f), angle RMS %.4f deg\n",
+                poses.size(), images.size(), axis.rms, axis.max, axis.angle_rms / degree);
+  }
+
+  void calibrate_lasers(CommandContext& context, StationCalibration& calibration, json& result) {
+    acquisition::check_calibration_complete(calibration, acquisition::CalibrationNeed::camera_pose);
+    const PinholeCamera& camera = calibration.camera->camera;
+    laser_options_.inner_corners = board_;
+    laser_options_.square_size = square_;
+    std::vector<std::vector<acquisition::LaserBoardView>> views;  // per laser
+    std::vector<int> indices;
+    if (sim_) {
+      for (const sim::BoardFrames& f : render(context, sim::laser_placements(board_.width, board_.height, square_),
+                                              rig_.camera, true, 2000)) {
+        const auto corners = acquisition::find_chessboard(f.laser_off, board_);
+        views.resize(f.laser_on.size());
+        for (std::size_t l = 0; l < f.laser_on.size(); ++l)
+          views[l].push_back({f.laser_off, f.laser_on[l], corners.value_or(std::vector<cv::Point2f>{})});
+      }
+      for (std::size_t l = 0; l < views.size(); ++l) indices.push_back(static_cast<int>(l));
+      if (laser_) {
+        if (*laser_ < 0 || *laser_ >= static_cast<int>(views.size()))
+          throw InvalidInput("--laser " + std::to_string(*laser_) + ": the station has " + std::to_string(views.size()) + " lasers");
+        views = {views[static_cast<std::size_t>(*laser_)]};
+        indices = {*laser_};
+      }
+    } else {
+      if (!laser_) throw InvalidInput("laser: --laser N names the laser the images show");
+      if (*laser_ < 0 || *laser_ >= static_cast<int>(description_.lasers.size()))
+        throw InvalidInput("--laser " + std::to_string(*laser_) + ": the station has " +
+                           std::to_string(description_.lasers.size()) + " lasers");
+      const std::vector<cv::Mat> off = read_images(off_images_, "laser --off"), on = read_images(on_images_, "laser --on");
+      if (off.size() != on.size())
+        throw InvalidInput("laser: " + std::to_string(off.size()) + " --off but " + std::to_string(on.size()) + " --on images");
+      views.emplace_back();
+      for (std::size_t i = 0; i < off.size(); ++i)
+        views.back().push_back({off[i], on[i], acquisition::find_chessboard(off[i], board_).value_or(std::vector<cv::Point2f>{})});
+      indices = {*laser_};
+    }
+    for (const int index : indices)
+      refuse_replacing(calibration.laser(index) != nullptr, "a plane for laser " + std::to_string(index));
+    StageTimer timer(context.report, "calibrate");
+    result["lasers"] = json::array();
+    for (std::size_t l = 0; l < views.size(); ++l) {
+      const acquisition::LaserPlaneCalibration fit = acquisition::calibrate_laser_plane(views[l], camera, laser_options_);
+      acquisition::LaserPart part;
+      part.index = indices[l];
+      part.date = acquisition::calibration_date();
+      part.views = static_cast<std::size_t>(std::count_if(fit.points_per_view.begin(), fit.points_per_view.end(),
+                                                          [](std::size_t n) { return n > 0; }));
+      part.plane = acquisition::to_station_frame(fit.plane, camera);
+      part.rms = fit.rms;
+      part.max = fit.max;
+      part.inliers = fit.inliers;
+      part.points = fit.points;
+      acquisition::set_laser(calibration, part);
+      json entry = {{"index", part.index}, {"views_used", part.views}, {"points", fit.points}, {"inliers", fit.inliers},
+                    {"residuals", {{"rms_mm", fit.rms}, {"max_mm", fit.max}}},
+                    {"normal", {part.plane.normal.x(), part.plane.normal.y(), part.plane.normal.z()}}};
+      if (sim_)
+        entry["truth"] = {{"normal_error_deg",
+                           angle_between(part.plane.normal, rig_.lasers[static_cast<std::size_t>(part.index)].plane.normal) / degree}};
+      result["lasers"].push_back(entry);
+      std::printf("laser %d: %zu of %zu stripe points kept over %zu views, plane RMS %.4f mm (max %.4f)\n", part.index,
+                  fit.inliers, fit.points, part.views, fit.rms, fit.max);
+    }
+  }
+
+  void calibrate_stereo(CommandContext& context, StationCalibration& calibration, json& result) {
+    refuse_replacing(calibration.stereo.has_value(), "a stereo calibration (" + (calibration.stereo ? calibration.stereo->date : "") + ")");
+    std::vector<cv::Mat> left, right;
+    if (sim_) {
+      const sim::StereoRig pair =
+          sim::stereo_rig(sim_object_height, sim_platter_radius, size_.width, size_.height, sim_baseline_);
+      left = sim_board_images(context, pair.left, 1);
+      right = sim_board_images(context, pair.right, 5000);
+    } else {
+      left = read_images(left_images_, "stereo --left");
+      right = read_images(right_images_, "stereo --right");
+    }
+    StageTimer timer(context.report, "calibrate");
+    const acquisition::StereoCalibration stereo = acquisition::calibrate_stereo(
+        left, right, board_, square_, sample_flags_ ? acquisition::StereoModel::opencv_sample : acquisition::StereoModel::standard);
+    acquisition::StereoPart part;
+    part.date = acquisition::calibration_date();
+    part.pairs = stereo.used_views.size();
+    part.left = acquisition::pinhole_camera(stereo.left, size_);
+    part.right = acquisition::pinhole_camera(stereo.right, size_);
+    cv::cv2eigen(cv::Mat(stereo.rotation), part.right.rotation);
+    part.right.translation = {stereo.translation[0], stereo.translation[1], stereo.translation[2]};
+    part.rms = stereo.rms;
+    for (const cv::Vec2d& v : stereo.per_view_rms) part.per_view_rms.push_back({v[0], v[1]});
+    calibration.stereo = part;
+    result["pairs"] = {{"given", left.size()}, {"used", part.pairs}};
+    result["residuals"] = {{"rms_px", stereo.rms}, {"left_rms_px", stereo.left.rms}, {"right_rms_px", stereo.right.rms}};
+    result["baseline"] = part.right.translation.norm();
+    std::printf("stereo: board found in both images of %zu of %zu pairs, RMS %.3f px (left %.3f, right %.3f), "
+                "baseline %.2f\n", part.pairs, left.size(), stereo.rms, stereo.left.rms, stereo.right.rms,
+                part.right.translation.norm());
+  }
+
+  StationOptions station_;
+  std::filesystem::path output_;
+  std::string board_text_ = "9x6";
+  double square_ = 8.0;
+  std::vector<std::string> images_, off_images_, on_images_, left_images_, right_images_;
+  bool free_k3_ = false, sample_flags_ = false;
+  std::vector<double> angles_deg_;
+  std::optional<double> step_deg_, lowest_corner_height_;
+  int sim_views_ = 9;
+  std::optional<int> laser_;
+  acquisition::LaserPlaneOptions laser_options_;
+  double sim_baseline_ = 0.2;
+
+  drivers::StationDescription description_;
+  cv::Size board_, size_;
+  bool sim_ = false, existed_ = false, force_ = false;
+  sim::TurntableLaserRig rig_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_calibrate_command(CLI::App& parent) { return std::make_unique<CalibrateCommand>(parent); }
+
+}  // namespace scanstation::app
