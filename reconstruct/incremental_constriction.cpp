@@ -12,6 +12,7 @@
 
 #include <array>
 #include <chrono>
+#include <deque>
 #include <iterator>
 #include <utility>
 #include <vector>
@@ -107,14 +108,33 @@ struct IncrementalConstriction::State {
   Vertex hint;
   bool started = false;
 
+  // The finite cells around each point, found once per batch (insertion
+  // alone changes them; CGAL's incident_cells walk is the costly part).
+  std::vector<int> star_slot;        // per point: its entry in stars, else −1
+  std::deque<std::vector<Cell>> stars;
+  std::vector<int> starred;
+
   bool kept(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
 
+  const std::vector<Cell>& star(Vertex v) {
+    int& slot = star_slot[static_cast<std::size_t>(v->info())];
+    if (slot < 0) {
+      slot = static_cast<int>(stars.size());
+      starred.push_back(v->info());
+      dt.finite_incident_cells(v, std::back_inserter(stars.emplace_back()));
+    }
+    return stars[static_cast<std::size_t>(slot)];
+  }
+  void forget_stars() {
+    for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
+    starred.clear();
+    stars.clear();
+  }
+
   // Boundary triangles at v, and (optionally) their edges opposite v.
-  int boundary_faces_at(Vertex v, std::vector<std::array<int, 2>>* link) const {
-    std::vector<Cell> around;
-    dt.finite_incident_cells(v, std::back_inserter(around));
+  int boundary_faces_at(Vertex v, std::vector<std::array<int, 2>>* link) {
     int f = 0;
-    for (const Cell c : around) {
+    for (const Cell c : star(v)) {
       if (!c->info().kept) continue;
       const int iv = c->index(v);
       for (int i = 0; i < 4; ++i) {
@@ -151,11 +171,8 @@ struct IncrementalConstriction::State {
   template <typename Wanted>
   void grow(std::vector<Cell>& region, Wanted&& wanted) {
     for (const Cell c : region) c->info().local = 0;
-    std::vector<Cell> around;
     for (const Vertex v : vertices_of(region)) {
-      around.clear();
-      dt.finite_incident_cells(v, std::back_inserter(around));
-      for (const Cell c : around)
+      for (const Cell c : star(v))
         if (c->info().local < 0 && wanted(c)) {
           c->info().local = 0;
           region.push_back(c);
@@ -166,9 +183,7 @@ struct IncrementalConstriction::State {
 
   // Fills the removed cells around v (their kept flag marks them as region).
   void fill_around(Vertex v, std::vector<Cell>& region) {
-    std::vector<Cell> around;
-    dt.finite_incident_cells(v, std::back_inserter(around));
-    for (const Cell c : around)
+    for (const Cell c : star(v))
       if (!c->info().kept) {
         c->info().kept = 1;
         region.push_back(c);
@@ -285,11 +300,8 @@ struct IncrementalConstriction::State {
     add_vertices(0);
     L.core_vertices = L.vertices.size();
     if (surround) {
-      std::vector<Cell> around;
       for (std::size_t k = 0; k < L.core_vertices; ++k) {
-        around.clear();
-        dt.finite_incident_cells(L.vertices[k], std::back_inserter(around));
-        for (const Cell c : around)
+        for (const Cell c : star(L.vertices[k]))
           if (c->info().local < 0) add_cell(c);
       }
       add_vertices(L.region);
@@ -355,7 +367,12 @@ struct IncrementalConstriction::State {
     std::fill(pending.begin(), pending.end(), 0);
     pending_count = 0;
     constrict_region(all, false, true, touched);
-    for (const Vertex v : dt.finite_vertex_handles()) faces_at[static_cast<std::size_t>(v->info())] = boundary_faces_at(v, nullptr);
+    std::fill(faces_at.begin(), faces_at.end(), 0);
+    for (const Cell c : all)
+      if (c->info().kept)
+        for (int i = 0; i < 4; ++i)
+          if (!kept(c->neighbor(i)))
+            for (int k = 1; k < 4; ++k) ++faces_at[static_cast<std::size_t>(c->vertex((i + k) % 4)->info())];
   }
 
   // Records f(v) for the points of the repaired region; returns the boundary
@@ -407,6 +424,7 @@ struct IncrementalConstriction::State {
     faces_at.resize(points.size(), 0);
     local_vertex.resize(points.size(), -1);
     f_now.resize(points.size(), -1);
+    star_slot.resize(points.size(), -1);
     pending.resize(points.size(), 0);
     pinched_now.resize(points.size(), 0);
     received += batch.rows();
@@ -415,11 +433,9 @@ struct IncrementalConstriction::State {
 
   // Fill, check, constrict again (see the class comment).
   void repair(const std::vector<Vertex>& fresh, BatchStats& s) {
-    std::vector<Cell> region, around;
+    std::vector<Cell> region;
     for (const Vertex v : fresh) {  // the new cells, in a deterministic order
-      around.clear();
-      dt.finite_incident_cells(v, std::back_inserter(around));
-      for (const Cell c : around)
+      for (const Cell c : star(v))
         if (c->info().local < 0) {
           c->info().local = 0;
           region.push_back(c);
@@ -478,6 +494,7 @@ BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch) {
       s.repair(fresh, stats);
     }
   }
+  s.forget_stars();
   stats.points_so_far = s.points.size();
   stats.pending = s.pending_count;
   stats.all_on_boundary = s.started && s.pending_count == 0;
