@@ -1,8 +1,8 @@
 // The incremental constriction against a from-scratch reconstruction of the
 // same points, measured in the same run.
 //
-//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--order scan|random] [--shape S]
-//   build/bench/incremental_bench recall [--batches B] MESH.off ...
+//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--order scan|random] [--shape S] [--margin M]
+//   build/bench/incremental_bench recall [--batches B] [--margin M] MESH.off ...
 //
 // timing: N points (default 100000) sampled on a simulated shape (chalice,
 // the default: a surface of revolution; or ellipsoid), fed in B batches
@@ -61,7 +61,7 @@ Eigen::MatrixX3i in_input_numbering(const SurfaceReconstruction& r, const std::v
 
 struct Args {
   Eigen::Index points = 100000;
-  int batches = 100, every = 1;
+  int batches = 100, every = 1, margin = 2;
   bool scan = true;
   std::string shape = "chalice";
   std::vector<std::string> files;
@@ -77,10 +77,11 @@ int timing(const Args& a) {
   const Eigen::MatrixX3d P = shape_points(a);
   const std::vector<Eigen::Index> order = arrival_order(P, a.scan);
   const std::size_t n = order.size();
-  std::printf("%s, %zu points, %d batches, %s order\n", a.shape.c_str(), n, a.batches, a.scan ? "scan" : "random");
+  std::printf("%s, %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), n, a.batches, a.scan ? "scan" : "random",
+              a.margin);
   std::printf("%6s %9s %10s %10s %8s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "touched",
               "rings", "wide", "all");
-  IncrementalConstriction inc;
+  IncrementalConstriction inc(surface_defaults(), a.margin);
   std::vector<double> ratios, times;
   for (int b = 0; b < a.batches; ++b) {
     const std::size_t to = batch_end(n, a.batches, b);
@@ -113,7 +114,7 @@ int recall(const Args& a) {
     bool valid = true;
     for (const bool scan : {true, false}) {
       const std::vector<Eigen::Index> order = arrival_order(P, scan);
-      IncrementalConstriction inc;
+      IncrementalConstriction inc(surface_defaults(), a.margin);
       for (int b = 0; b < a.batches; ++b)
         inc.add_batch(sim::ordered_rows(P, order, batch_end(order.size(), a.batches, b - 1), batch_end(order.size(), a.batches, b)));
       const SurfaceReconstruction s = inc.surface();
@@ -146,6 +147,7 @@ int main(int argc, char** argv) {
     else if (arg == "--every") a.every = std::stoi(value());
     else if (arg == "--order") a.scan = value() != "random";
     else if (arg == "--shape") a.shape = value();
+    else if (arg == "--margin") a.margin = std::stoi(value());
     else a.files.push_back(arg);
   }
   if (mode == "timing") return timing(a);

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <deque>
 #include <iterator>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,15 +39,8 @@ using Vertex = Delaunay::Vertex_handle;
 using Indexed = std::pair<Kernel::Point_3, int>;
 using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Indexed>>;
 
-// How far a repair reaches. kMargin: rings of cells (kept and removed) around
-// the new cells that are re-opened too, so that decisions taken before the
-// new points were known (a tunnel carved to reach a point near the edge of
-// the scan so far) are taken again: with 2, the final triangle recall on
-// CGAL's meshes is within about 1 point of constricting from scratch, with 0
-// up to 18 points lower (cactus, scan order). kFillRounds: rounds of filling
-// where the fill pinched the boundary. kUnfreezeRings: rings of kept cells
-// released when the local constriction locks.
-constexpr int kMargin = 2;
+// How far a repair may widen: rounds of filling where the fill pinched the
+// boundary; rings of kept cells released when the local constriction locks.
 constexpr int kFillRounds = 30;
 constexpr int kUnfreezeRings = 2;
 
@@ -95,6 +89,7 @@ struct LocalComplex {
 struct IncrementalConstriction::State {
   ReconstructionOptions options;
   ConstrictionOptions constriction;
+  int margin = 2;
   Delaunay dt;
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches
@@ -442,7 +437,7 @@ struct IncrementalConstriction::State {
         }
     }
     for (const Cell c : region) c->info().local = -1;
-    for (int ring = 0; ring < kMargin; ++ring) {
+    for (int ring = 0; ring < margin; ++ring) {
       grow(region, [](Cell c) { return c->info().kept != 0; });
       for (const Vertex v : vertices_of(region)) fill_around(v, region);
     }
@@ -464,13 +459,15 @@ struct IncrementalConstriction::State {
   }
 };
 
-IncrementalConstriction::IncrementalConstriction(const ReconstructionOptions& options)
+IncrementalConstriction::IncrementalConstriction(const ReconstructionOptions& options, int margin)
     : state_(std::make_unique<State>()) {
+  if (margin < 0) throw InvalidInput("the margin of the incremental constriction must be at least 0, got " + std::to_string(margin));
   if (options.voronoi_skeleton) throw InvalidInput("the incremental constriction has no Voronoi skeleton method");
   if (options.constriction.keep.rows() > 0)
     throw InvalidInput("the incremental constriction does not support faces to keep (§5.7)");
   state_->options = options;
   state_->constriction = constriction_options(options);
+  state_->margin = margin;
 }
 
 IncrementalConstriction::~IncrementalConstriction() = default;
