@@ -53,11 +53,12 @@ int euler_share(int f) { return f > 0 ? 6 - f : 0; }
 // single cycle: the surface is a 2-manifold there.
 bool single_cycle(const std::vector<std::array<int, 2>>& link) {
   if (link.empty()) return true;
-  for (const auto& e : link) {
-    int degree = 0;
-    for (const auto& g : link) degree += (g[0] == e[0]) + (g[1] == e[0]);
-    if (degree != 2) return false;
-  }
+  for (const auto& e : link)
+    for (const int end : e) {
+      int degree = 0;
+      for (const auto& g : link) degree += (g[0] == end) + (g[1] == end);
+      if (degree != 2) return false;
+    }
   // Every link vertex has degree 2: a union of cycles; walk the first one.
   std::size_t length = 0;
   int previous = link[0][0], at = link[0][1];
