@@ -158,6 +158,45 @@ std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& bound
 
 }  // namespace
 
+ConstrictionOptions constriction_options(const ReconstructionOptions& options) {
+  ConstrictionOptions out = options.constriction;
+  if (options.guide) {
+    out.guide_c1 = options.guide->c1;
+    out.guide_c0 = options.guide->c0;
+  }
+  return out;
+}
+
+void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const ReconstructionOptions& options,
+                    SurfaceReconstruction& out) {
+  BoundaryStatistics& s = out.statistics;
+  s.guide_faces = c.guide_faces;
+  out.mesh.faces = c.boundary;
+  if (!c.all_on_boundary && options.augment) {
+    const auto start = std::chrono::steady_clock::now();
+    const Augmentation a =
+        augment_constriction(dt.points, adjacency(dt), out.mesh.faces, c.interior_vertices, options.augmentation);
+    s.constriction_seconds += seconds_since(start);
+    s.c0_used = a.c0_used;
+    s.carved = a.carved;
+    c.all_on_boundary = c.interior_vertices.empty();
+  }
+  if (options.flips) {
+    const auto start = std::chrono::steady_clock::now();
+    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep);
+    s.flip_seconds = seconds_since(start);
+  }
+  std::vector<Eigen::Index> kept;
+  for (std::size_t k = 0; k < c.kept.size(); ++k)
+    if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
+  out.interior.resize(static_cast<Eigen::Index>(kept.size()), 4);
+  for (std::size_t k = 0; k < kept.size(); ++k) out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
+  if (s.carved > 0 || s.flips > 0) out.interior.resize(0, 4);
+  s.enclosed_measure = enclosed_volume(out.mesh.vertices.positions, out.mesh.faces);
+  fill_statistics(s, dt, c);
+  s.kept_faces_on_boundary = faces_on(options.constriction.keep, Eigen::MatrixXi(out.mesh.faces));
+}
+
 ReconstructionOptions surface_defaults() {
   ReconstructionOptions options;
   options.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
@@ -169,47 +208,15 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   BoundaryStatistics& s = out.statistics;
   std::vector<Eigen::Index> map;
   const Triangulated<3> triangulated = triangulate_distinct<3>(points, s, map, out.source);
-  const Eigen::MatrixX3d& original = triangulated.original;
   const DelaunayComplex<3>& dt = triangulated.dt;
-  const Eigen::MatrixX3d& P = dt.points;
   const ReconstructionOptions options = renumbered(given, map);
 
-  auto start = std::chrono::steady_clock::now();
-  ConstrictionOptions constriction = options.constriction;
-  if (options.guide) {
-    constriction.guide_c1 = options.guide->c1;
-    constriction.guide_c0 = options.guide->c0;
-  }
-  Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton) : constrict(dt, constriction);
-  s.guide_faces = c.guide_faces;
+  const auto start = std::chrono::steady_clock::now();
+  Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton)
+                                               : constrict(dt, constriction_options(options));
   s.constriction_seconds = seconds_since(start);
-
-  out.mesh.vertices.positions = original;
-  out.mesh.faces = c.boundary;
-  if (!c.all_on_boundary && options.augment) {
-    start = std::chrono::steady_clock::now();
-    const Augmentation a = augment_constriction(P, adjacency(dt), out.mesh.faces, c.interior_vertices, options.augmentation);
-    s.constriction_seconds += seconds_since(start);
-    s.c0_used = a.c0_used;
-    s.carved = a.carved;
-    c.all_on_boundary = c.interior_vertices.empty();
-  }
-  if (options.flips) {
-    start = std::chrono::steady_clock::now();
-    s.flips = flip_boundary(P, out.mesh.faces, *options.flips, options.constriction.keep);
-    s.flip_seconds = seconds_since(start);
-  }
-  std::vector<Eigen::Index> kept;
-  for (std::size_t k = 0; k < c.kept.size(); ++k)
-    if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
-  out.interior.resize(static_cast<Eigen::Index>(kept.size()), 4);
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
-  }
-  if (s.carved > 0 || s.flips > 0) out.interior.resize(0, 4);
-  s.enclosed_measure = enclosed_volume(original, out.mesh.faces);
-  fill_statistics(s, dt, c);
-  s.kept_faces_on_boundary = faces_on(options.constriction.keep, Eigen::MatrixXi(out.mesh.faces));
+  out.mesh.vertices.positions = triangulated.original;
+  finish_surface(dt, c, options, out);
   return out;
 }
 

@@ -97,6 +97,19 @@ struct CurveReconstruction {
   BoundaryStatistics statistics;
 };
 
+/// The constriction options of a reconstruction: options.constriction with
+/// the γ-guide of options.guide.
+ConstrictionOptions constriction_options(const ReconstructionOptions& options);
+
+/// The stages after constriction of a 3D Delaunay complex, shared by
+/// reconstruct_surface and the incremental constriction: augmentation (§5.4)
+/// when c left points interior and options.augment is on, the flips of
+/// options.flips, the kept tetrahedra and the statistics. out.mesh.vertices
+/// must hold the points (dt.points up to scale); fills out.mesh.faces,
+/// out.interior and out.statistics (except the input counts and Delaunay time).
+void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const ReconstructionOptions& options,
+                    SurfaceReconstruction& out);
+
 /// What `scanstation reconstruct` does with 3D points: the defaults with
 /// ConstrictionCriterion::area_change_and_gamma, which recovers the most true
 /// triangles on real meshes (the defaults keep the thesis' γ-indicator).

@@ -97,11 +97,13 @@ struct Candidate {
 template <int D>
 class Constrictor {
  public:
-  Constrictor(const DelaunayComplex<D>& complex, const ConstrictionOptions& options)
+  Constrictor(const DelaunayComplex<D>& complex, const ConstrictionOptions& options,
+              const ConstrictionStart* start = nullptr)
       : dt_(complex),
         options_(options),
+        start_(start),
         cells_(static_cast<int>(complex.cells.rows())),
-        kept_(static_cast<std::size_t>(cells_), 1),
+        kept_(start && !start->kept.empty() ? start->kept : std::vector<char>(static_cast<std::size_t>(cells_), 1)),
         stamp_(static_cast<std::size_t>(cells_), 0),
         on_boundary_(static_cast<std::size_t>(complex.points.rows()), 0),
         edges_(D == 3 ? static_cast<std::size_t>(complex.points.rows()) * 8 : 0) {}
@@ -111,7 +113,7 @@ class Constrictor {
     initial_boundary();
     std::size_t extra = 0;
     while (!heap_.empty()) {
-      const bool done = boundary_vertices_ == dt_.points.rows();
+      const bool done = boundary_vertices_ == target_;
       const Candidate top = heap_.top();
       if (done && !continue_after_all(top.key, extra)) break;
       heap_.pop();
@@ -119,7 +121,7 @@ class Constrictor {
       if (!removable(top.cell)) continue;  // line 5: deletions elsewhere may have blocked it
       remove(top.cell);
       if (done) ++extra;
-      if (options_.progress) options_.progress(static_cast<double>(boundary_vertices_) / static_cast<double>(dt_.points.rows()));
+      if (options_.progress) options_.progress(static_cast<double>(boundary_vertices_) / static_cast<double>(target_));
     }
     return result();
   }
@@ -142,7 +144,7 @@ class Constrictor {
       const int v = vertex(c, k);
       if (delta > 0 && !on_boundary_[static_cast<std::size_t>(v)]) {
         on_boundary_[static_cast<std::size_t>(v)] = 1;
-        ++boundary_vertices_;
+        if (!exempt(v)) ++boundary_vertices_;
       }
     }
     if constexpr (D == 3)
@@ -152,15 +154,32 @@ class Constrictor {
       }
   }
 
-  // Line 2: the convex hull is the first boundary.
+  bool exempt(int v) const { return start_ && !start_->exempt.empty() && start_->exempt[static_cast<std::size_t>(v)]; }
+
+  // Line 2: the convex hull is the first boundary (or, from a given start,
+  // the faces between kept and removed cells).
   void initial_boundary() {
     std::vector<int> on_hull;
-    for (int c = 0; c < cells_; ++c)
+    for (int c = 0; c < cells_; ++c) {
+      if (!kept_[static_cast<std::size_t>(c)]) continue;
       for (int i = 0; i <= D; ++i)
-        if (dt_.neighbors(c, i) < 0) {
+        if (boundary_face(c, i)) {
           mark_face(c, i, +1);
           if (on_hull.empty() || on_hull.back() != c) on_hull.push_back(c);
         }
+    }
+    target_ = dt_.points.rows();
+    if (start_) {  // the points of kept cells that must be reached
+      std::vector<char> counted(static_cast<std::size_t>(dt_.points.rows()), 0);
+      target_ = 0;
+      for (int c = 0; c < cells_; ++c)
+        if (kept_[static_cast<std::size_t>(c)])
+          for (int k = 0; k <= D; ++k) {
+            const int v = vertex(c, k);
+            if (!counted[static_cast<std::size_t>(v)] && !exempt(v)) ++target_;
+            counted[static_cast<std::size_t>(v)] = 1;
+          }
+    }
     // Only cells with a face on the hull can be removable yet.
     for (const int c : on_hull) consider(c);
   }
@@ -249,6 +268,7 @@ class Constrictor {
   }
 
   bool removable(int c) const {
+    if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
     for (int k = 0; k < n; ++k)
@@ -324,11 +344,13 @@ class Constrictor {
 
   const DelaunayComplex<D>& dt_;
   const ConstrictionOptions& options_;
+  const ConstrictionStart* start_;
   int cells_;
   std::vector<char> kept_;
   std::vector<std::uint32_t> stamp_;
   std::vector<char> on_boundary_;
-  Eigen::Index boundary_vertices_ = 0;
+  Eigen::Index boundary_vertices_ = 0;  // of the points that are not exempt
+  Eigen::Index target_ = 0;             // how many of them must reach the boundary
   EdgeCounter edges_;
   QuaternaryHeap<Candidate> heap_;
   // Bit i: the face opposite vertex i must stay; guide bits are filled in
@@ -396,6 +418,11 @@ Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionO
 
 Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options) {
   return Constrictor<3>(complex, options).run();
+}
+
+Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionStart& start,
+                          const ConstrictionOptions& options) {
+  return Constrictor<3>(complex, options, &start).run();
 }
 
 }  // namespace scanstation

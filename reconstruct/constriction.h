@@ -70,6 +70,25 @@ struct Constriction {
 Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options = {});
 Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options = {});
 
+/// Where constriction of part of a complex starts (incremental use,
+/// reconstruct/incremental_constriction.h), one flag per cell / point:
+/// kept    0: the cell is already removed (outside); empty: every cell is kept
+///         (the convex hull, line 2 of Algorithm 5.1)
+/// frozen  1: the cell is never removed; empty: none is
+/// exempt  1: the point need not reach the boundary for constriction to stop
+struct ConstrictionStart {
+  std::vector<char> kept;
+  std::vector<char> frozen;
+  std::vector<char> exempt;
+};
+
+/// Constriction (as above) from a given state: the boundary is the faces
+/// between kept cells and removed cells (or the outside); it stops when every
+/// point of a kept cell that is not exempt is on the boundary. The kept cells
+/// must bound a ball for the result to be a closed genus-0 surface.
+Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionStart& start,
+                          const ConstrictionOptions& options = {});
+
 /// The pruned graph given by `kept` (one flag per Delaunay cell) as a
 /// constriction result: the oriented faces between kept and removed (or
 /// outside) cells, and the points on none of them.

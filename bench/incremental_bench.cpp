@@ -1,0 +1,157 @@
+// The incremental constriction against a from-scratch reconstruction of the
+// same points, measured in the same run.
+//
+//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--order scan|random] [--shape S] [--margin M]
+//   build/bench/incremental_bench recall [--batches B] [--margin M] MESH.off ...
+//
+// timing: N points (default 100000) sampled on a simulated shape (chalice,
+// the default: a surface of revolution; or ellipsoid), fed in B batches
+// (default 100, i.e. 1% each) in turntable (angle) or random order. Every
+// K-th batch (default 1) a from-scratch reconstruct_surface of the points so
+// far is timed; prints the per-batch ratio and the median of the ratios.
+//
+// recall: per mesh (vertices as input, its triangles as the known answer),
+// the triangle recall of the from-scratch result and of the incremental one
+// after the last batch, in scan and in random order, and the wider repairs.
+#include "core/io/mesh_io.h"
+#include "core/mesh_topology.h"
+#include "core/triangle_recall.h"
+#include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/incremental_constriction.h"
+#include "sim/arrival_order.h"
+#include "sim/sampling.h"
+#include "sim/shapes.h"
+#include "sim/surface_of_revolution.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace scanstation;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<Eigen::Index> arrival_order(const Eigen::MatrixX3d& P, bool scan) {
+  return scan ? sim::turntable_order(P) : sim::shuffled_order(P.rows(), 11);
+}
+
+std::size_t batch_end(std::size_t n, int batches, int b) { return n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(batches); }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// A reconstruction's faces in the numbering of P (through the arrival order).
+Eigen::MatrixX3i in_input_numbering(const SurfaceReconstruction& r, const std::vector<Eigen::Index>& order) {
+  Eigen::MatrixX3i faces = r.mesh.faces;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      faces(f, k) = static_cast<int>(order[static_cast<std::size_t>(r.source[static_cast<std::size_t>(faces(f, k))])]);
+  return faces;
+}
+
+struct Args {
+  Eigen::Index points = 100000;
+  int batches = 100, every = 1, margin = 2;
+  bool scan = true;
+  std::string shape = "chalice";
+  std::vector<std::string> files;
+};
+
+Eigen::MatrixX3d shape_points(const Args& a) {
+  const TriangleMesh mesh = a.shape == "ellipsoid" ? sim::ellipsoid({3.0, 2.0, 1.0}, 5)
+                                                   : sim::surface_of_revolution(sim::chalice_profile(200), 256);
+  return sim::sample_surface(mesh, a.points, 2024).positions;
+}
+
+int timing(const Args& a) {
+  const Eigen::MatrixX3d P = shape_points(a);
+  const std::vector<Eigen::Index> order = arrival_order(P, a.scan);
+  const std::size_t n = order.size();
+  std::printf("%s, %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), n, a.batches, a.scan ? "scan" : "random",
+              a.margin);
+  std::printf("%6s %9s %10s %10s %8s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "touched",
+              "rings", "wide", "all");
+  IncrementalConstriction inc(surface_defaults(), a.margin);
+  std::vector<double> ratios, times;
+  for (int b = 0; b < a.batches; ++b) {
+    const std::size_t to = batch_end(n, a.batches, b);
+    const BatchStats s = inc.add_batch(sim::ordered_rows(P, order, batch_end(n, a.batches, b - 1), to));
+    times.push_back(s.seconds);
+    double scratch = 0.0;
+    if ((b + 1) % a.every == 0 && s.points_so_far >= 4) {
+      const Eigen::MatrixX3d so_far = sim::ordered_rows(P, order, 0, to);
+      const auto start = std::chrono::steady_clock::now();
+      const SurfaceReconstruction r = reconstruct_surface(so_far, surface_defaults());
+      scratch = seconds_since(start);
+      if (b > 0) ratios.push_back(s.seconds / scratch);  // the first batch is a from-scratch constriction itself
+    }
+    std::printf("%6d %9zu %10.4f %10.4f %8.4f %9zu %6d %5d %d\n", b, s.points_so_far, s.seconds, scratch,
+                scratch > 0 ? s.seconds / scratch : 0.0, s.tetrahedra_touched, s.rings, s.wider_repair, s.all_on_boundary);
+  }
+  std::printf("median per-batch time %.4f s; median ratio to from scratch %.4f (%zu batches compared); wider repairs %zu\n",
+              median(times), median(ratios), ratios.size(), inc.wider_repairs());
+  return 0;
+}
+
+int recall(const Args& a) {
+  std::printf("%-14s %7s %9s %9s %9s %6s %6s %s\n", "mesh", "points", "scratch", "scan", "random", "wide", "valid", "(recall)");
+  for (const std::string& file : a.files) {
+    const TriangleMesh truth = io::read_mesh(file);
+    const Eigen::MatrixX3d& P = truth.vertices.positions;
+    const double scratch = triangle_recall(truth.faces, reconstruct_surface(P, surface_defaults()).mesh.faces);
+    double r[2] = {0, 0};
+    std::size_t wide = 0;
+    bool valid = true;
+    for (const bool scan : {true, false}) {
+      const std::vector<Eigen::Index> order = arrival_order(P, scan);
+      IncrementalConstriction inc(surface_defaults(), a.margin);
+      for (int b = 0; b < a.batches; ++b)
+        inc.add_batch(sim::ordered_rows(P, order, batch_end(order.size(), a.batches, b - 1), batch_end(order.size(), a.batches, b)));
+      const SurfaceReconstruction s = inc.surface();
+      const MeshTopology t = mesh_topology(s.mesh);
+      valid = valid && t.closed && t.manifold && t.genus == 0 && t.components == 1 && t.isolated_vertices == 0;
+      r[scan ? 0 : 1] = triangle_recall(truth.faces, in_input_numbering(s, order));
+      wide += inc.wider_repairs();
+    }
+    const std::string name = file.substr(file.find_last_of('/') + 1);
+    std::printf("%-14s %7lld %9.3f %9.3f %9.3f %6zu %6d\n", name.c_str(), static_cast<long long>(P.rows()), scratch, r[0],
+                r[1], wide, valid);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s timing|recall [options] [MESH.off ...]\n", argv[0]);
+    return 2;
+  }
+  const std::string mode = argv[1];
+  Args a;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto value = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
+    if (arg == "--points") a.points = std::stoll(value());
+    else if (arg == "--batches") a.batches = std::stoi(value());
+    else if (arg == "--every") a.every = std::stoi(value());
+    else if (arg == "--order") a.scan = value() != "random";
+    else if (arg == "--shape") a.shape = value();
+    else if (arg == "--margin") a.margin = std::stoi(value());
+    else a.files.push_back(arg);
+  }
+  if (mode == "timing") return timing(a);
+  if (mode == "recall") return recall(a);
+  std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
+  return 2;
+}

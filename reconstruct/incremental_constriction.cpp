@@ -1,0 +1,548 @@
+#include "reconstruct/incremental_constriction.h"
+
+#include "core/errors.h"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+
+#include <array>
+#include <chrono>
+#include <deque>
+#include <iterator>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace scanstation {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// A cell created by insertion starts kept: the cavity of the new points is
+// filled, as the convex hull is at the start of Algorithm 5.1, and then
+// constricted again. `local` numbers the cell in the complex of one repair.
+struct CellInfo {
+  int local = -1;
+  char kept = 1;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;  // the point's index
+using Cb = CGAL::Triangulation_cell_base_with_info_3<CellInfo, Kernel>;
+using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
+using Cell = Delaunay::Cell_handle;
+using Vertex = Delaunay::Vertex_handle;
+using Indexed = std::pair<Kernel::Point_3, int>;
+using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Indexed>>;
+
+// How far a repair may widen: rounds of filling where the fill pinched the
+// boundary; rings of kept cells released when the local constriction locks.
+constexpr int kFillRounds = 30;
+constexpr int kUnfreezeRings = 2;
+
+// The Euler characteristic of a closed triangulated 2-manifold is V − E + F
+// = Σ_v (1 − f(v)/6), f(v) the triangles at v (E = 3F/2): six times a
+// vertex's share, 0 for a point off the boundary.
+int euler_share(int f) { return f > 0 ? 6 - f : 0; }
+
+// The link of a boundary vertex (one edge per boundary triangle at it) is a
+// single cycle: the surface is a 2-manifold there.
+bool single_cycle(const std::vector<std::array<int, 2>>& link) {
+  if (link.empty()) return true;
+  for (const auto& e : link)
+    for (const int end : e) {
+      int degree = 0;
+      for (const auto& g : link) degree += (g[0] == end) + (g[1] == end);
+      if (degree != 2) return false;
+    }
+  // Every link vertex has degree 2: a union of cycles; walk the first one.
+  std::size_t length = 0;
+  int previous = link[0][0], at = link[0][1];
+  do {
+    ++length;
+    for (const auto& g : link)
+      if ((g[0] == at && g[1] != previous) || (g[1] == at && g[0] != previous)) {
+        previous = at;
+        at = g[0] == at ? g[1] : g[0];
+        break;
+      }
+  } while (at != link[0][1] && length <= link.size());
+  return length == link.size();
+}
+
+// The complex of one repair: first the cells to re-decide, then the cells
+// around them (kept ones frozen, removed ones as the outside they are).
+struct LocalComplex {
+  DelaunayComplex<3> dt;
+  ConstrictionStart start;
+  std::vector<Cell> cells;
+  std::vector<Vertex> vertices;
+  std::size_t region = 0;         // cells [0, region) are re-decided
+  std::size_t core_vertices = 0;  // vertices [0, core_vertices) are those of the region cells
+};
+
+}  // namespace
+
+struct IncrementalConstriction::State {
+  ReconstructionOptions options;
+  ConstrictionOptions constriction;
+  int margin = 2;
+  Delaunay dt;
+  std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
+  std::vector<Eigen::Index> source;     // their rows in the stream of all batches
+  std::vector<int> faces_at;            // f(v): boundary triangles at each point
+  std::vector<char> pending;            // points constriction could not reach
+  std::vector<int> local_vertex;        // scratch: a point's number in a LocalComplex, else −1
+  std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
+  std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
+  Eigen::Index received = 0, duplicates = 0;
+  std::size_t pending_count = 0, wider = 0;
+  Vertex hint;
+  bool started = false;
+
+  // The finite cells around each point, found once per batch (insertion
+  // alone changes them; CGAL's incident_cells walk is the costly part).
+  std::vector<int> star_slot;        // per point: its entry in stars, else −1
+  std::deque<std::vector<Cell>> stars;
+  std::vector<int> starred;
+
+  bool kept(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
+
+  const std::vector<Cell>& star(Vertex v) {
+    int& slot = star_slot[static_cast<std::size_t>(v->info())];
+    if (slot < 0) {
+      slot = static_cast<int>(stars.size());
+      starred.push_back(v->info());
+      dt.finite_incident_cells(v, std::back_inserter(stars.emplace_back()));
+    }
+    return stars[static_cast<std::size_t>(slot)];
+  }
+  void forget_stars() {
+    for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
+    starred.clear();
+    stars.clear();
+  }
+
+  // Boundary triangles at v, and (optionally) their edges opposite v.
+  int boundary_faces_at(Vertex v, std::vector<std::array<int, 2>>* link) {
+    int f = 0;
+    for (const Cell c : star(v)) {
+      if (!c->info().kept) continue;
+      const int iv = c->index(v);
+      for (int i = 0; i < 4; ++i) {
+        if (i == iv || kept(c->neighbor(i))) continue;
+        ++f;
+        if (link) {
+          std::array<int, 2> e{};
+          for (int k = 0, n = 0; k < 4; ++k)
+            if (k != iv && k != i) e[static_cast<std::size_t>(n++)] = c->vertex(k)->info();
+          link->push_back(e);
+        }
+      }
+    }
+    return f;
+  }
+
+  // The distinct finite vertices of `cells`.
+  std::vector<Vertex> vertices_of(const std::vector<Cell>& cells) {
+    std::vector<Vertex> out;
+    for (const Cell c : cells)
+      for (int k = 0; k < 4; ++k) {
+        const Vertex v = c->vertex(k);
+        if (local_vertex[static_cast<std::size_t>(v->info())] < 0) {
+          local_vertex[static_cast<std::size_t>(v->info())] = static_cast<int>(out.size());
+          out.push_back(v);
+        }
+      }
+    for (const Vertex v : out) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    return out;
+  }
+
+  // Adds to `region` the finite cells around its vertices that `wanted`
+  // accepts and that are not in it yet.
+  template <typename Wanted>
+  void grow(std::vector<Cell>& region, Wanted&& wanted) {
+    for (const Cell c : region) c->info().local = 0;
+    for (const Vertex v : vertices_of(region)) {
+      for (const Cell c : star(v))
+        if (c->info().local < 0 && wanted(c)) {
+          c->info().local = 0;
+          region.push_back(c);
+        }
+    }
+    for (const Cell c : region) c->info().local = -1;
+  }
+
+  // Fills the removed cells around v (their kept flag marks them as region).
+  void fill_around(Vertex v, std::vector<Cell>& region) {
+    for (const Cell c : star(v))
+      if (!c->info().kept) {
+        c->info().kept = 1;
+        region.push_back(c);
+      }
+  }
+
+  // Fills the pockets the fill enclosed: components of removed cells next to
+  // the region that reach neither the outside of the hull nor more cells than
+  // the region has (beyond that they count as outside). Returns whether it
+  // found any.
+  bool fill_pockets(std::vector<Cell>& region) {
+    const std::size_t budget = 4 * region.size() + 256;
+    std::vector<Cell> component, seen;
+    bool found = false;
+    const std::size_t size = region.size();
+    for (std::size_t r = 0; r < size; ++r)
+      for (int i = 0; i < 4; ++i) {
+        const Cell start = region[r]->neighbor(i);
+        if (dt.is_infinite(start) || start->info().kept || start->info().local >= 0) continue;
+        // Flood the removed cells from here, marking them (local = 0).
+        component.assign(1, start);
+        start->info().local = 0;
+        bool outside = false;
+        for (std::size_t k = 0; k < component.size() && !outside; ++k)
+          for (int j = 0; j < 4 && !outside; ++j) {
+            const Cell n = component[k]->neighbor(j);
+            if (dt.is_infinite(n)) outside = true;
+            else if (!n->info().kept && n->info().local < 0) {
+              n->info().local = 0;
+              component.push_back(n);
+              outside = component.size() > budget;
+            }
+          }
+        seen.insert(seen.end(), component.begin(), component.end());
+        if (outside) continue;
+        found = true;
+        for (const Cell c : component) {
+          c->info().kept = 1;
+          region.push_back(c);
+        }
+      }
+    for (const Cell c : seen) c->info().local = -1;
+    return found;
+  }
+
+  // Makes sure the filled solid is still a ball: at every point whose star
+  // changed the boundary must be a 2-manifold (its link one cycle), and the
+  // Euler characteristic must stay 2 (a handle lowers it, an enclosed pocket
+  // raises it). Where the fill pinched the boundary at a point, the removed
+  // cells around that point are filled too; where it changed the Euler
+  // characteristic, those around every point of the region. Returns false
+  // when that does not settle within a few rounds.
+  bool fill_to_ball(std::vector<Cell>& region) {
+    // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
+    // refreshed only at the points of cells filled since the last round.
+    std::vector<Vertex> known;
+    int change = 0;
+    std::vector<std::array<int, 2>> link;
+    const auto refresh = [&](Vertex v) {
+      const auto id = static_cast<std::size_t>(v->info());
+      if (f_now[id] < 0) {
+        f_now[id] = faces_at[id];
+        known.push_back(v);
+      }
+      link.clear();
+      const int f = boundary_faces_at(v, &link);
+      change += euler_share(f) - euler_share(f_now[id]);
+      f_now[id] = f;
+      pinched_now[id] = !single_cycle(link);
+    };
+    bool ball = false;
+    std::size_t checked = 0;
+    for (int round = 0; round < kFillRounds && !ball; ++round) {
+      const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
+      checked = region.size();
+      for (const Vertex v : vertices_of(filled)) refresh(v);
+      std::vector<Vertex> pinched;
+      for (const Vertex v : known)
+        if (pinched_now[static_cast<std::size_t>(v->info())]) pinched.push_back(v);
+      if (!pinched.empty()) {
+        for (const Vertex v : pinched) fill_around(v, region);
+      } else if (!fill_pockets(region)) {  // a pocket and a handle would cancel out in χ
+        ball = change == 0;
+        if (!ball)
+          for (const Vertex v : known) fill_around(v, region);
+      }
+    }
+    for (const Vertex v : known) {
+      f_now[static_cast<std::size_t>(v->info())] = -1;
+      pinched_now[static_cast<std::size_t>(v->info())] = 0;
+    }
+    return ball;
+  }
+
+  LocalComplex local_complex(const std::vector<Cell>& region, bool surround) {
+    LocalComplex L;
+    const auto add_cell = [&](Cell c) {
+      c->info().local = static_cast<int>(L.cells.size());
+      L.cells.push_back(c);
+    };
+    const auto add_vertices = [&](std::size_t from) {
+      for (std::size_t i = from; i < L.cells.size(); ++i)
+        for (int k = 0; k < 4; ++k) {
+          const Vertex v = L.cells[i]->vertex(k);
+          int& id = local_vertex[static_cast<std::size_t>(v->info())];
+          if (id < 0) {
+            id = static_cast<int>(L.vertices.size());
+            L.vertices.push_back(v);
+          }
+        }
+    };
+    for (const Cell c : region) add_cell(c);
+    L.region = L.cells.size();
+    add_vertices(0);
+    L.core_vertices = L.vertices.size();
+    if (surround) {
+      for (std::size_t k = 0; k < L.core_vertices; ++k) {
+        for (const Cell c : star(L.vertices[k]))
+          if (c->info().local < 0) add_cell(c);
+      }
+      add_vertices(L.region);
+    }
+    const auto cells = static_cast<Eigen::Index>(L.cells.size());
+    L.dt.points.resize(static_cast<Eigen::Index>(L.vertices.size()), 3);
+    for (std::size_t k = 0; k < L.vertices.size(); ++k)
+      L.dt.points.row(static_cast<Eigen::Index>(k)) = points[static_cast<std::size_t>(L.vertices[k]->info())].transpose();
+    L.dt.cells.resize(cells, 4);
+    L.dt.neighbors.resize(cells, 4);
+    L.start.kept.resize(L.cells.size());
+    for (Eigen::Index i = 0; i < cells; ++i) {
+      const Cell c = L.cells[static_cast<std::size_t>(i)];
+      L.start.kept[static_cast<std::size_t>(i)] = c->info().kept;
+      for (int k = 0; k < 4; ++k) {
+        L.dt.cells(i, k) = local_vertex[static_cast<std::size_t>(c->vertex(k)->info())];
+        const Cell n = c->neighbor(k);
+        L.dt.neighbors(i, k) = dt.is_infinite(n) ? -1 : n->info().local;
+      }
+    }
+    if (surround) {
+      L.start.frozen.assign(L.cells.size(), 1);
+      std::fill(L.start.frozen.begin(), L.start.frozen.begin() + static_cast<std::ptrdiff_t>(L.region), 0);
+      L.start.exempt.resize(L.vertices.size());
+      for (std::size_t k = 0; k < L.vertices.size(); ++k)
+        L.start.exempt[k] = pending[static_cast<std::size_t>(L.vertices[k]->info())];
+    }
+    for (const Cell c : L.cells) c->info().local = -1;
+    for (const Vertex v : L.vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    return L;
+  }
+
+  // Constricts the region (kept cells around it frozen when `surround`);
+  // keeps the result when every point of the region that is not pending
+  // reached the boundary, or when `final`. Returns whether they all did.
+  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, std::size_t& touched) {
+    const LocalComplex L = local_complex(region, surround);
+    touched += L.cells.size();
+    const Constriction<3> r = constrict(L.dt, L.start, constriction);
+    std::vector<char> interior(L.vertices.size(), 0);
+    for (const int v : r.interior_vertices) interior[static_cast<std::size_t>(v)] = 1;
+    bool reached = true;
+    for (std::size_t k = 0; k < L.core_vertices; ++k)
+      reached = reached && (!interior[k] || pending[static_cast<std::size_t>(L.vertices[k]->info())]);
+    if (!reached && !final) return false;
+    for (std::size_t i = 0; i < L.region; ++i) L.cells[i]->info().kept = r.kept[i];
+    for (std::size_t k = 0; k < L.core_vertices; ++k) {
+      char& p = pending[static_cast<std::size_t>(L.vertices[k]->info())];
+      pending_count += static_cast<std::size_t>(interior[k]) - static_cast<std::size_t>(p);
+      p = interior[k];
+    }
+    return reached;
+  }
+
+  // The wider repair (and the first constriction): all of the convex hull
+  // kept, constricted as a whole, exactly as reconstruct_surface does.
+  void constrict_all(std::size_t& touched) {
+    std::vector<Cell> all;
+    for (const Cell c : dt.finite_cell_handles()) {
+      c->info().kept = 1;
+      all.push_back(c);
+    }
+    std::fill(pending.begin(), pending.end(), 0);
+    pending_count = 0;
+    constrict_region(all, false, true, touched);
+    std::fill(faces_at.begin(), faces_at.end(), 0);
+    for (const Cell c : all)
+      if (c->info().kept)
+        for (int i = 0; i < 4; ++i)
+          if (!kept(c->neighbor(i)))
+            for (int k = 1; k < 4; ++k) ++faces_at[static_cast<std::size_t>(c->vertex((i + k) % 4)->info())];
+  }
+
+  // Records f(v) for the points of the repaired region; returns the boundary
+  // triangles at them, each counted once.
+  std::size_t update_faces_at(const std::vector<Cell>& region) {
+    const std::vector<Vertex> vertices = vertices_of(region);
+    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = 0;
+    std::size_t patch = 0;
+    std::vector<std::array<int, 2>> link;
+    for (const Vertex v : vertices) {
+      link.clear();
+      const int id = v->info();
+      faces_at[static_cast<std::size_t>(id)] = boundary_faces_at(v, &link);
+      for (const auto& e : link) {  // count a triangle at its smallest point in the patch
+        const auto first = [&](int w) { return local_vertex[static_cast<std::size_t>(w)] < 0 || id < w; };
+        patch += first(e[0]) && first(e[1]);
+      }
+    }
+    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    return patch;
+  }
+
+  // Inserts the batch in spatial order (each point located from the last),
+  // then numbers the new points in the order of their rows.
+  std::vector<Vertex> insert(const Eigen::MatrixX3d& batch) {
+    std::vector<Indexed> input;
+    input.reserve(static_cast<std::size_t>(batch.rows()));
+    for (Eigen::Index i = 0; i < batch.rows(); ++i)
+      input.emplace_back(Kernel::Point_3(batch(i, 0), batch(i, 1), batch(i, 2)), static_cast<int>(i));
+    CGAL::spatial_sort(input.begin(), input.end(), SortTraits());
+    std::vector<std::pair<int, Vertex>> created;
+    for (const auto& [point, row] : input) {
+      const auto before = dt.number_of_vertices();
+      hint = dt.insert(point, hint == Vertex() ? Cell() : hint->cell());
+      if (dt.number_of_vertices() == before) {
+        ++duplicates;
+      } else {
+        created.emplace_back(row, hint);
+      }
+    }
+    std::sort(created.begin(), created.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<Vertex> fresh;
+    for (const auto& [row, v] : created) {
+      v->info() = static_cast<int>(points.size());
+      points.push_back(batch.row(row).transpose());
+      source.push_back(received + row);
+      fresh.push_back(v);
+    }
+    faces_at.resize(points.size(), 0);
+    local_vertex.resize(points.size(), -1);
+    f_now.resize(points.size(), -1);
+    star_slot.resize(points.size(), -1);
+    pending.resize(points.size(), 0);
+    pinched_now.resize(points.size(), 0);
+    received += batch.rows();
+    return fresh;
+  }
+
+  // Fill, check, constrict again (see the class comment).
+  void repair(const std::vector<Vertex>& fresh, BatchStats& s) {
+    std::vector<Cell> region;
+    for (const Vertex v : fresh) {  // the new cells, in a deterministic order
+      for (const Cell c : star(v))
+        if (c->info().local < 0) {
+          c->info().local = 0;
+          region.push_back(c);
+        }
+    }
+    for (const Cell c : region) c->info().local = -1;
+    for (int ring = 0; ring < margin; ++ring) {
+      grow(region, [](Cell c) { return c->info().kept != 0; });
+      for (const Vertex v : vertices_of(region)) fill_around(v, region);
+    }
+    const bool ball = fill_to_ball(region);
+    for (int ring = 0; ball; ++ring) {
+      // The last ring keeps its result even if it locked: the points it
+      // could not reach stay pending (augmentation brings them on, §5.4).
+      if (constrict_region(region, true, ring == kUnfreezeRings, s.tetrahedra_touched) || ring == kUnfreezeRings) {
+        s.rings = ring;
+        s.faces_changed = update_faces_at(region);
+        return;
+      }
+      grow(region, [](Cell c) { return c->info().kept != 0; });
+    }
+    s.wider_repair = true;
+    ++wider;
+    constrict_all(s.tetrahedra_touched);
+    s.faces_changed = 2 * points.size() - 4;  // the whole boundary (F = 2V − 4) was re-decided
+  }
+};
+
+IncrementalConstriction::IncrementalConstriction(const ReconstructionOptions& options, int margin)
+    : state_(std::make_unique<State>()) {
+  if (margin < 0) throw InvalidInput("the margin of the incremental constriction must be at least 0, got " + std::to_string(margin));
+  if (options.voronoi_skeleton) throw InvalidInput("the incremental constriction has no Voronoi skeleton method");
+  if (options.constriction.keep.rows() > 0)
+    throw InvalidInput("the incremental constriction does not support faces to keep (§5.7)");
+  state_->options = options;
+  state_->constriction = constriction_options(options);
+  state_->margin = margin;
+}
+
+IncrementalConstriction::~IncrementalConstriction() = default;
+IncrementalConstriction::IncrementalConstriction(IncrementalConstriction&&) noexcept = default;
+IncrementalConstriction& IncrementalConstriction::operator=(IncrementalConstriction&&) noexcept = default;
+
+BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!batch.allFinite()) throw InvalidInput("batch points contain NaN or infinite coordinates");
+  State& s = *state_;
+  BatchStats stats;
+  stats.points_received = static_cast<std::size_t>(batch.rows());
+  const std::vector<Vertex> fresh = s.insert(batch);
+  stats.points_inserted = fresh.size();
+  if (s.dt.dimension() == 3) {
+    if (!s.started) {
+      s.started = true;
+      s.constrict_all(stats.tetrahedra_touched);
+      stats.faces_changed = 2 * s.points.size() - 4;
+    } else if (!fresh.empty()) {
+      s.repair(fresh, stats);
+    }
+  }
+  s.forget_stars();
+  stats.points_so_far = s.points.size();
+  stats.pending = s.pending_count;
+  stats.all_on_boundary = s.started && s.pending_count == 0;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+SurfaceReconstruction IncrementalConstriction::surface() const {
+  State& s = *state_;
+  SurfaceReconstruction out;
+  const auto n = static_cast<Eigen::Index>(s.points.size());
+  out.mesh.vertices.positions.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) out.mesh.vertices.positions.row(i) = s.points[static_cast<std::size_t>(i)].transpose();
+  out.source = s.source;
+  out.statistics.input_points = s.received;
+  out.statistics.duplicates_merged = s.duplicates;
+  if (!s.started) {
+    out.mesh.faces.resize(0, 3);
+    for (Eigen::Index i = 0; i < n; ++i) out.statistics.interior_vertices.push_back(static_cast<int>(i));
+    return out;
+  }
+  // The whole triangulation as a complex over all points (their own numbers).
+  DelaunayComplex<3> dt;
+  dt.points = out.mesh.vertices.positions;
+  std::vector<Cell> cells;
+  for (const Cell c : s.dt.finite_cell_handles()) {
+    c->info().local = static_cast<int>(cells.size());
+    cells.push_back(c);
+  }
+  dt.cells.resize(static_cast<Eigen::Index>(cells.size()), 4);
+  dt.neighbors.resize(dt.cells.rows(), 4);
+  std::vector<char> kept(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    kept[i] = cells[i]->info().kept;
+    for (int k = 0; k < 4; ++k) {
+      dt.cells(static_cast<Eigen::Index>(i), k) = cells[i]->vertex(k)->info();
+      const Cell nb = cells[i]->neighbor(k);
+      dt.neighbors(static_cast<Eigen::Index>(i), k) = s.dt.is_infinite(nb) ? -1 : nb->info().local;
+    }
+  }
+  for (const Cell c : cells) c->info().local = -1;
+  Constriction<3> c = pruned_boundary(dt, std::move(kept));
+  finish_surface(dt, c, s.options, out);
+  return out;
+}
+
+TriangleMesh IncrementalConstriction::boundary() const { return surface().mesh; }
+
+Eigen::Index IncrementalConstriction::point_count() const { return static_cast<Eigen::Index>(state_->points.size()); }
+
+std::size_t IncrementalConstriction::wider_repairs() const { return state_->wider; }
+
+}  // namespace scanstation
