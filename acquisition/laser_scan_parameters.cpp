@@ -60,7 +60,8 @@ json to_json(const LaserScanParameters& p) {
           {"maximum_radius", std::isfinite(t.maximum_radius) ? json(t.maximum_radius) : json(nullptr)},
           {"minimum_incidence", t.minimum_incidence},
           {"outlier_radius", p.outlier_radius},
-          {"outlier_neighbours", p.outlier_neighbours}};
+          {"outlier_neighbours", p.outlier_neighbours},
+          {"row_step", p.row_step}};
 }
 
 LaserScanParameters laser_scan_parameters_from_json(const json& value, const std::string& where,
@@ -104,6 +105,7 @@ LaserScanParameters laser_scan_parameters_from_json(const json& value, const std
   read_key(value, "outlier_radius", where, p.outlier_radius, finite_non_negative, "a number ≥ 0 (0 = off)", missing);
   read_key(value, "outlier_neighbours", where, p.outlier_neighbours, [](int v) { return v >= 1; }, "an integer ≥ 1",
            missing);
+  read_key(value, "row_step", where, p.row_step, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
   return p;
 }
 

@@ -16,18 +16,24 @@ namespace scanstation::acquisition {
 /// outlier_radius  radius outlier removal over the whole cloud (outlier_removal.h),
 ///                 in station units; 0 = off
 /// outlier_neighbours  neighbours a point needs within outlier_radius
+/// row_step        keep the stripe centres of every n-th row (column for a
+///                 horizontal stripe): the spacing along the stripe matched to
+///                 the spacing between turntable steps, so that the points are
+///                 spread evenly enough for constriction (thesis §5.5: the
+///                 boundary is only as good as the sampling is dense and even)
 struct LaserScanParameters {
   LaserLineOptions line;
   LaserTriangulationOptions triangulation;
   double outlier_radius = 0.0;
   int outlier_neighbours = 2;
+  int row_step = 1;
 };
 
 /// {"peak_fit": "gaussian"|"centre_of_mass"|"parabolic", "threshold_sigmas",
 ///  "minimum_contrast", "minimum_width", "maximum_width", "saturation",
 ///  "double_peak_ratio", "region": [x, y, w, h], "minimum_height",
 ///  "maximum_radius" (null = none), "minimum_incidence", "outlier_radius",
-///  "outlier_neighbours"}
+///  "outlier_neighbours", "row_step"}
 nlohmann::json to_json(const LaserScanParameters& parameters);
 
 /// Reads what to_json wrote; a key that is absent keeps its value in `base`

@@ -326,12 +326,19 @@ SessionRecorder SessionRecorder::create(const fs::path& folder, const SessionMan
     throw InvalidInput(folder.string() + ": holds a session already; continue it with --resume, or use --force to "
                        "start over");
   if (overwrite == io::Overwrite::replace) {
-    for (const char* name : {kJournal, "points.ply", "report.json"}) fs::remove(folder / name);
-    fs::remove_all(folder / "frames");
+    for (const char* name : {kJournal, "points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png",
+                             "report.json"})
+      fs::remove(folder / name);
+    for (const char* name : {"frames", "snapshots"}) fs::remove_all(folder / name);
   }
   fs::create_directories(folder / "frames");
   io::write_file_atomically(folder / kManifest, to_json(manifest).dump(2) + "\n", overwrite);
-  return SessionRecorder(folder, manifest, open_journal(folder / kJournal, true), 0);
+  // The recorder holds the manifest as every reader will see it (numbers
+  // after their round trip through the file), so the points it computes live
+  // are the ones a replay computes, bit for bit.
+  SessionContents written;
+  read_manifest(folder, written);
+  return SessionRecorder(folder, written.manifest, open_journal(folder / kJournal, true), 0);
 }
 
 SessionRecorder SessionRecorder::resume(const fs::path& folder) {
@@ -382,6 +389,11 @@ void SessionRecorder::record(const CapturedStep& step) {
           {"gain", step.gain},
           {"frames", frames}});
   steps_done_ = step.step + 1;
+}
+
+Eigen::MatrixX3d own_coordinates(const Eigen::MatrixX3d& platter, const ObjectPlacement& placement) {
+  if (placement.scale == 1.0 && placement.translation.isZero()) return platter;
+  return (platter.rowwise() - placement.translation.transpose()) / placement.scale;
 }
 
 }  // namespace scanstation::acquisition

@@ -9,7 +9,8 @@
 //                           timestamps, exposure, gain, the frames and their
 //                           laser), scan_stopped, scan_finished, scan_failed;
 //                           each line is written after its frames, fsynced
-//   SESSION/points.ply, SESSION/report.json   results (session_replay.h)
+//   SESSION/points.ply, mesh.ply, smooth.ply, patches.json, preview.png,
+//   report.json, snapshots/   results (session_replay.h, station/)
 //
 // A step counts as recorded when its journal line is complete: its frames
 // were on disk before the line was written.
@@ -37,6 +38,10 @@ struct ObjectPlacement {
   double scale = 1.0;
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
 };
+
+/// Points of the platter's object frame (#P by 3) in the object's own
+/// coordinates: (p − translation) / scale.
+Eigen::MatrixX3d own_coordinates(const Eigen::MatrixX3d& platter, const ObjectPlacement& placement);
 
 struct SessionObject {
   std::string name;       // built-in name, mesh file name, or what the operator typed

@@ -3,7 +3,8 @@
 namespace scanstation::acquisition {
 
 RecordingOutcome record_turntable_session(TurntableScanDevices& devices, SessionRecorder& recorder,
-                                          const RecordedStepSink& on_step, int stop_after) {
+                                          const RecordedStepSink& on_step, int stop_after,
+                                          const std::function<bool()>& stop_requested) {
   const SessionManifest& manifest = recorder.manifest();
   const int first = recorder.steps_done();
   recorder.event("scan_started", {{"first_step", first},
@@ -25,6 +26,7 @@ RecordingOutcome record_turntable_session(TurntableScanDevices& devices, Session
       }
       on_step(step, step_points(frames, manifest.geometry, manifest.parameters));
     }
+    if (stop_requested && stop_requested()) return false;
     return stop_after <= 0 || outcome.recorded_now < stop_after;
   };
   try {

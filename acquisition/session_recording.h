@@ -25,10 +25,12 @@ struct RecordingOutcome {
 
 /// Captures the steps `recorder` still lacks (from recorder.steps_done() on)
 /// and records each. `stop_after` > 0 stops after that many steps (a scan in
-/// parts; the session stays resumable). Journal events scan_started and
+/// parts; the session stays resumable); so does `stop_requested` returning
+/// true after a step (an operator's Ctrl-C). Journal events scan_started and
 /// scan_finished / scan_stopped frame the run; a device error propagates
 /// after every completed step has been recorded.
 RecordingOutcome record_turntable_session(TurntableScanDevices& devices, SessionRecorder& recorder,
-                                          const RecordedStepSink& on_step = {}, int stop_after = 0);
+                                          const RecordedStepSink& on_step = {}, int stop_after = 0,
+                                          const std::function<bool()>& stop_requested = {});
 
 }  // namespace scanstation::acquisition

@@ -54,11 +54,6 @@ std::optional<StepFrames> load_step(const SessionContents& session, const Sessio
   return frames;
 }
 
-void to_object_coordinates(PointCloud& cloud, const ObjectPlacement& placement) {
-  if (placement.scale == 1.0 && placement.translation.isZero()) return;
-  cloud.positions = ((cloud.positions.rowwise() - placement.translation.transpose()) / placement.scale).eval();
-}
-
 }  // namespace
 
 cv::Mat read_session_frame(const fs::path& file) { return cv::imread(file.string(), cv::IMREAD_UNCHANGED); }
@@ -93,7 +88,7 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   if (result.parameters.outlier_radius > 0)
     result.outliers_removed =
         remove_isolated_points(result.points, result.parameters.outlier_radius, result.parameters.outlier_neighbours);
-  to_object_coordinates(result.points.cloud, session.manifest.object.placement);
+  result.points.cloud.positions = own_coordinates(result.points.cloud.positions, session.manifest.object.placement);
   result.process_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

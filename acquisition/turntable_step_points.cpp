@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 
+#include <cmath>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
@@ -47,7 +48,13 @@ std::vector<LaserScanPoints> step_points(const StepFrames& frames, const Turntab
       throw InvalidInput("laser scan: laser " + std::to_string(laser) + " has no plane in the geometry (" +
                          std::to_string(geometry.lasers.size()) + " lasers)");
     check_size(frame);
-    const LaserLine line = extract_laser_line(grey8(frame), off, parameters.line);
+    LaserLine line = extract_laser_line(grey8(frame), off, parameters.line);
+    if (parameters.row_step > 1) {
+      const bool by_row = parameters.line.stripe == StripeDirection::vertical;
+      std::erase_if(line.peaks, [&](const LinePeak& p) {
+        return static_cast<int>(std::lround(by_row ? p.y : p.x)) % parameters.row_step != 0;
+      });
+    }
     triangulate_laser_line(line, camera, geometry.lasers[static_cast<std::size_t>(laser)], angle, colour,
                            clouds[static_cast<std::size_t>(laser)], parameters.triangulation);
   }

@@ -29,7 +29,7 @@ extern "C" void forward_signal(int signal_number) {
 
 }  // namespace
 
-SafeStateGuard::SafeStateGuard() {
+SafeStateGuard::SafeStateGuard(OnSignal on_signal) : on_signal_(on_signal) {
   if (pipe2(pipe_, O_CLOEXEC) != 0) throw IoError("safe-state guard: cannot create its pipe");
   int expected = -1;
   if (!g_signal_pipe.compare_exchange_strong(expected, pipe_[1])) {
@@ -87,6 +87,12 @@ void SafeStateGuard::watch() {
       std::lock_guard lock(mutex_);
       fired_ = true;
       run_actions();
+    }
+    int none = 0;
+    if (on_signal_ == OnSignal::stop_work && signal_received_.compare_exchange_strong(none, signal_number)) {
+      room_logger("drivers")->warn("signal {}: stopping after the current step (again to end at once)",
+                                   int(signal_number));
+      continue;
     }
     signal(signal_number, SIG_DFL);
     raise(signal_number);

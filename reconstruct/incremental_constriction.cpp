@@ -543,6 +543,13 @@ TriangleMesh IncrementalConstriction::boundary() const { return surface().mesh; 
 
 Eigen::Index IncrementalConstriction::point_count() const { return static_cast<Eigen::Index>(state_->points.size()); }
 
+Eigen::Index IncrementalConstriction::boundary_face_count() const {
+  if (!state_->started) return 0;
+  Eigen::Index corners = 0;
+  for (const int f : state_->faces_at) corners += f;
+  return corners / 3;
+}
+
 std::size_t IncrementalConstriction::wider_repairs() const { return state_->wider; }
 
 }  // namespace scanstation

@@ -83,6 +83,9 @@ class IncrementalConstriction {
   TriangleMesh boundary() const;
 
   Eigen::Index point_count() const;
+  /// Triangles of the constricted boundary as it stands (before the
+  /// augmentation and flips surface() adds); 0 until the points span 3D. O(points).
+  Eigen::Index boundary_face_count() const;
   /// Batches repaired by re-constricting the whole triangulation.
   std::size_t wider_repairs() const;
 

@@ -20,6 +20,7 @@ struct CommandContext {
   Report& report;
   io::Overwrite overwrite;
   std::shared_ptr<spdlog::logger> log;
+  int exit_code = 0;  ///< the process's, when the work ended early but its results were kept (a stopped scan)
 };
 
 class Command {

@@ -66,6 +66,7 @@ int run(int argc, char** argv) {
     command->run(context);
     reporter.finish();
     if (!command->report_path().empty()) report.write(command->report_path(), overwrite);
+    if (context.exit_code != 0) return context.exit_code;
   }
   return 0;
 }

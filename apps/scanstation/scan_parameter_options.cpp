@@ -22,11 +22,15 @@ void ScanParameterOptions::add_to(CLI::App& cli) {
       ->check(CLI::NonNegativeNumber);
   cli.add_option("--outlier-neighbours", outlier_neighbours, "Neighbours a point needs within --outlier-radius")
       ->check(CLI::Range(1, 1000));
+  cli.add_option("--row-step", row_step,
+                 "Keep the stripe centre of every n-th image row: the spacing along the stripe near the spacing "
+                 "between steps, for an even sampling")
+      ->check(CLI::Range(1, 1000));
 }
 
 bool ScanParameterOptions::any() const {
   return peak_fit || threshold_sigmas || minimum_contrast || double_peak_ratio || minimum_height || maximum_radius ||
-         outlier_radius || minimum_width || maximum_width || outlier_neighbours;
+         outlier_radius || minimum_width || maximum_width || outlier_neighbours || row_step;
 }
 
 acquisition::LaserScanParameters ScanParameterOptions::apply(acquisition::LaserScanParameters p) const {
@@ -40,6 +44,7 @@ acquisition::LaserScanParameters ScanParameterOptions::apply(acquisition::LaserS
   if (maximum_radius) p.triangulation.maximum_radius = *maximum_radius;
   if (outlier_radius) p.outlier_radius = *outlier_radius;
   if (outlier_neighbours) p.outlier_neighbours = *outlier_neighbours;
+  if (row_step) p.row_step = *row_step;
   return p;
 }
 

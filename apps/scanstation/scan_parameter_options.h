@@ -15,7 +15,7 @@ struct ScanParameterOptions {
   std::optional<std::string> peak_fit;
   std::optional<double> threshold_sigmas, minimum_contrast, double_peak_ratio, minimum_height, maximum_radius,
       outlier_radius;
-  std::optional<int> minimum_width, maximum_width, outlier_neighbours;
+  std::optional<int> minimum_width, maximum_width, outlier_neighbours, row_step;
 
   void add_to(CLI::App& cli);
   bool any() const;

@@ -5,17 +5,11 @@
 #include "core/io/mesh_io.h"
 #include "smoothing/curve_output.h"
 #include "smoothing/g1_curve.h"
-#include "smoothing/g1_verification.h"
-#include "smoothing/oscillation.h"
 #include "smoothing/patches_json.h"
 #include "smoothing/polygon_tangents.h"
 #include "smoothing/reflection_lines.h"
-#include "smoothing/sign_condition.h"
-#include "smoothing/six_split.h"
+#include "smoothing/surface_smoothing.h"
 #include "smoothing/tessellation.h"
-#include "smoothing/three_split.h"
-#include "smoothing/two_split.h"
-#include "smoothing/vertex_normals.h"
 
 #include <cstdio>
 #include <map>
@@ -117,27 +111,17 @@ class SmoothCommand final : public Command {
     const TriangleMesh mesh = io::read_mesh(input_, {std::nullopt, context.progress.stage("read")});
     context.progress.finish();
     read_timer.stop();
-    if (mesh.face_count() == 0) throw InvalidInput(input_.string() + ": no triangles; smoothing needs a closed mesh");
-    const auto& V = mesh.vertices.positions;
-    StageTimer normal_timer(context.report, "normals");
-    Eigen::MatrixX3d N = vertex_normals_for(mesh);
-    const std::vector<int> adjusted = enforce_sign_condition(V, mesh.faces, N);
-    const std::size_t violations = sign_condition_violations(V, mesh.faces, N).size();
-    normal_timer.stop();
-    StageTimer patch_timer(context.report, "patches");
-    const MeshEdges edges = edges_of(mesh);
-    const ThreeSplitOptions three_split_options{ratio_ == "least-squares", tension_};
-    const std::vector<TwoSplitPair> pairs = scheme_ == "adaptive-two-split"
-                                                ? two_split_pairs(V, mesh.faces, edges, min_angle_)
-                                                : std::vector<TwoSplitPair>{};
-    const BezierSurface surface = scheme_ == "six-split"   ? six_split(V, mesh.faces, N, edges, tension_)
-                                  : scheme_ == "three-split" ? three_split(V, mesh.faces, N, edges, three_split_options)
-                                                             : two_split(V, mesh.faces, N, edges, pairs, three_split_options);
-    patch_timer.stop();
-    StageTimer verify_timer(context.report, "verification");
-    const G1Verification g1 = verify_g1(surface);
-    const Oscillation wiggle = oscillation(surface, V, mesh.faces);
-    verify_timer.stop();
+    const SurfaceSmoothingOptions options = smoothing_options(mesh);
+    SurfaceSmoothing smoothed;
+    try {
+      smoothed = scanstation::smooth_surface(mesh, options);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(input_.string() + ": " + e.what());
+    }
+    context.report.add_seconds("normals", smoothed.normals_seconds);
+    context.report.add_seconds("patches", smoothed.patches_seconds);
+    context.report.add_seconds("verification", smoothed.verification_seconds);
+    const BezierSurface& surface = smoothed.surface;
     // PLY is streamed patch by patch (large inputs); other formats and the
     // reflection-line picture go through the tessellated mesh in memory.
     const bool stream = output_.extension() == ".ply" && !zebra_;
@@ -152,59 +136,43 @@ class SmoothCommand final : public Command {
     if (patches_) io::write_file_atomically(*patches_, patches_json(surface, scheme_), context.overwrite);
     if (zebra_) io::write_file_atomically(*zebra_, reflection_lines_png(dense, mesh), context.overwrite);
     write_timer.stop();
-    context.report["result"] = {
-        {"scheme", scheme_},
-        {"normals", normals_},
-        {"tension", tension_},
-        {"macro_triangles", mesh.face_count()},
-        {"patches", surface.patches.size()},
-        {"adjusted_vertices", adjusted},
-        {"sign_condition_violations", violations},
-        {"dependent_edges", surface.dependent_edges},
-        {"g1", {{"max_normal_angle", g1.max_normal_angle},
-                {"max_tangent_plane_residual", g1.max_residual},
-                {"shared_edges", g1.shared_edges},
-                {"samples", g1.samples},
-                {"unmatched_edges", g1.unmatched_edges}}},
-        {"oscillation", {{"max_relative", wiggle.max_relative}, {"mean_relative", wiggle.mean_relative}}},
-        {"tessellation", {{"density", density_}, {"streamed", stream}, {"faces", surface.patches.size() * density_ * density_}}}};
+    nlohmann::json& result = context.report["result"];
+    result = smoothing_report(smoothed, options, mesh.face_count());
+    result["normals"] = normals_;
+    result["tessellation"] = {
+        {"density", density_}, {"streamed", stream}, {"faces", surface.patches.size() * density_ * density_}};
     std::printf("wrote %s: %zu cubic patches over %lld triangles, largest normal angle across patch edges %.3g rad, "
                 "%zu normal(s) adjusted\n",
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
-                g1.max_normal_angle, adjusted.size());
-    if (scheme_ != "six-split") context.report["result"]["ratio"] = ratio_;
-    if (scheme_ == "adaptive-two-split") {
-      // Candidates whose pair would violate the G¹ orientation stay three-split.
-      const std::size_t two_split_triangles = 3 * std::size_t(mesh.face_count()) - surface.patches.size();
-      context.report["result"]["min_angle"] = min_angle_;
-      context.report["result"]["two_split_candidates"] = 2 * pairs.size();
-      context.report["result"]["two_split_triangles"] = two_split_triangles;
-      std::printf("%zu macro triangle(s) two-split (%zu candidates below %g°)\n", two_split_triangles, 2 * pairs.size(),
-                  min_angle_);
-    }
-    if (violations > 0 || surface.dependent_edges > 0)
+                smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
+    if (options.scheme == SplitScheme::adaptive_two_split)
+      std::printf("%zu macro triangle(s) two-split (%zu candidates below %g°)\n", smoothed.two_split_triangles,
+                  smoothed.two_split_candidates, min_angle_);
+    if (smoothed.sign_condition_violations > 0 || surface.dependent_edges > 0)
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
                   "equations\n",
-                  violations, surface.dependent_edges);
+                  smoothed.sign_condition_violations, surface.dependent_edges);
   }
 
-  Eigen::MatrixX3d vertex_normals_for(const TriangleMesh& mesh) const {
+  SurfaceSmoothingOptions smoothing_options(const TriangleMesh& mesh) const {
+    SurfaceSmoothingOptions options;
+    const std::map<std::string, SplitScheme> schemes{{"six-split", SplitScheme::six_split},
+                                                     {"three-split", SplitScheme::three_split},
+                                                     {"adaptive-two-split", SplitScheme::adaptive_two_split}};
+    options.scheme = schemes.at(scheme_);
+    options.tension = tension_;
+    options.least_squares_ratio = ratio_ == "least-squares";
+    options.min_angle = min_angle_;
     if (normals_ == "given") {
       if (!mesh.vertices.has_normals()) throw InvalidInput("--normals given: " + input_.string() + " has no normals");
-      return mesh.vertices.normals.rowwise().normalized();
+      options.given_normals = mesh.vertices.normals;
+    } else {
+      const std::map<std::string, NormalWeighting> weightings{{"area", NormalWeighting::area},
+                                                              {"uniform", NormalWeighting::uniform},
+                                                              {"inverse-area", NormalWeighting::inverse_area}};
+      options.normals = weightings.at(normals_);
     }
-    const std::map<std::string, NormalWeighting> weightings{{"area", NormalWeighting::area},
-                                                            {"uniform", NormalWeighting::uniform},
-                                                            {"inverse-area", NormalWeighting::inverse_area}};
-    return vertex_normals(mesh.vertices.positions, mesh.faces, weightings.at(normals_));
-  }
-
-  MeshEdges edges_of(const TriangleMesh& mesh) const {
-    try {
-      return mesh_edges(mesh.faces);
-    } catch (const TopologyError& e) {
-      throw InvalidInput(input_.string() + ": " + e.what());
-    }
+    return options;
   }
 
   std::filesystem::path input_, output_;

@@ -143,7 +143,8 @@ void OpenStation::make_safe() {
 }
 
 GuardedStation::GuardedStation(const StationDescription& description, unsigned roles,
-                               const FrameSourceFactory& sim_frames) {
+                               const FrameSourceFactory& sim_frames, drivers::OnSignal on_signal)
+    : guard_(on_signal) {
   // In the body, not the initialiser list: guard_ exists before the first
   // line is requested. Added after a signal fired, the action runs at once.
   station_ = open_station(description, roles, sim_frames);

@@ -67,9 +67,12 @@ std::unique_ptr<OpenStation> open_station(const drivers::StationDescription& des
 class GuardedStation {
  public:
   GuardedStation(const drivers::StationDescription& description, unsigned roles,
-                 const FrameSourceFactory& sim_frames = {});
+                 const FrameSourceFactory& sim_frames = {},
+                 drivers::OnSignal on_signal = drivers::OnSignal::end_process);
   OpenStation& operator*() { return *station_; }
   OpenStation* operator->() { return station_.get(); }
+  /// With OnSignal::stop_work: the signal that asked the work to stop, else 0.
+  int signal_received() const { return guard_.signal_received(); }
 
  private:
   std::unique_ptr<OpenStation> station_;  // declared first: outlives the guard's last make_safe

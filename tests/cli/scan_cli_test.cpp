@@ -1,6 +1,8 @@
 // End-to-end tests of `scanstation scan` and `scanstation replay` on the
-// simulated station: sessions, progress, replay, resume after a stop and
-// after SIGTERM, a mesh file in its own coordinates, damaged sessions.
+// simulated station: sessions, progress, the whole station flow (live
+// boundary, final boundary, smooth surface, preview, accuracy), replay
+// byte for byte, resume after a stop and after SIGTERM, a mesh file in its
+// own coordinates, damaged sessions.
 #include "cli_support.h"
 #include "core/io/mesh_io.h"
 #include "sim/shapes.h"
@@ -74,7 +76,8 @@ Outcome* ScannedSphere::scan_ = nullptr;
 TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   ASSERT_EQ(scan_->exit_code, 0) << scan_->err;
   EXPECT_THAT(scan_->out, testing::HasSubstr("scanned " + std::to_string(kSteps) + " of " + std::to_string(kSteps)));
-  for (const char* file : {"manifest.json", "journal.jsonl", "points.ply", "report.json"})
+  for (const char* file : {"manifest.json", "journal.jsonl", "points.ply", "mesh.ply", "smooth.ply", "patches.json",
+                           "preview.png", "report.json"})
     EXPECT_TRUE(fs::exists(session() / file)) << file;
   EXPECT_EQ(count_lines(slurp(session() / "journal.jsonl"), "\"event\":\"step\""), std::size_t(kSteps));
   EXPECT_EQ(std::distance(fs::directory_iterator(session() / "frames"), fs::directory_iterator()), 3 * kSteps);
@@ -88,6 +91,21 @@ TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   EXPECT_GT(report["points"].get<int>(), 1000);
   const json command_report = json::parse(slurp(*dir_ / "scan.json"));
   EXPECT_EQ(command_report["points"], report["points"]);
+  // The flow's guarantees: a closed genus-0 boundary through every distinct
+  // point (grown live), a G¹ surface over it.
+  EXPECT_EQ(report["boundary"]["built"], "incremental");
+  EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
+  EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
+  EXPECT_EQ(report["boundary"]["all_on_boundary"], true);
+  EXPECT_EQ(report["boundary"]["vertices"], report["boundary"]["distinct_points"]);
+  // Ten stripes 36° apart make slivers: the six-split runs and reports where
+  // the sign condition fails (tests/smoothing check G¹ where it holds).
+  EXPECT_EQ(report["smoothing"]["patches"].get<Eigen::Index>(), 6 * report["boundary"]["faces"].get<Eigen::Index>());
+  EXPECT_TRUE(report["smoothing"].contains("sign_condition_violations"));
+  EXPECT_TRUE(report["accuracy"].contains("mesh"));
+  const TriangleMesh mesh = io::read_mesh(session() / "mesh.ply");
+  EXPECT_EQ(mesh.vertex_count(), report["boundary"]["vertices"].get<Eigen::Index>());
+  EXPECT_TRUE(mesh.vertices.has_colors()) << "the points' colours";
 }
 
 TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
@@ -105,11 +123,42 @@ TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
   EXPECT_GT(steps.back()["points"].get<int>(), 1000);
 }
 
+TEST_F(ScannedSphere, ProgressJsonFollowsTheLiveBoundaryStepByStep) {
+  std::vector<json> live;
+  std::istringstream in(scan_->err);
+  for (std::string line; std::getline(in, line);) {
+    const json event = json::parse(line, nullptr, false);
+    if (!event.is_discarded() && event["event"] == "boundary") live.push_back(event);
+  }
+  ASSERT_EQ(live.size(), std::size_t(kSteps)) << scan_->err;
+  for (std::size_t i = 1; i < live.size(); ++i) {
+    EXPECT_GT(live[i]["points"].get<int>(), live[i - 1]["points"].get<int>());
+    ASSERT_TRUE(live[i]["all_on_boundary"].get<bool>()) << "step " << i;
+    EXPECT_EQ(live[i]["boundary_faces"].get<int>(), 2 * live[i]["points"].get<int>() - 4);
+  }
+  const json report = json::parse(slurp(session() / "report.json"));
+  EXPECT_EQ(live.back()["points"], report["boundary"]["distinct_points"]);
+}
+
+TEST_F(ScannedSphere, SnapshotsOfTheLiveBoundaryEveryKSteps) {
+  ScratchFolder out;
+  const Outcome r = scanstation("replay " + session().string() + " -o " + out.path().string() + " --snapshot-every 4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int step : {3, 7}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "boundary-step-%04d.ply", step);
+    const TriangleMesh snapshot = io::read_mesh(out / "snapshots" / name);
+    EXPECT_EQ(snapshot.face_count(), 2 * snapshot.vertex_count() - 4) << name;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(out / "snapshots"), fs::directory_iterator()), 2);
+}
+
 TEST_F(ScannedSphere, ReplayIsByteIdenticalAndFasterThanTheCapture) {
   ScratchFolder out;
   const Outcome r = scanstation("replay " + session().string() + " -o " + out.path().string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(slurp(out / "points.ply"), slurp(session() / "points.ply"));
+  for (const char* file : {"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png"})
+    EXPECT_EQ(slurp(out / file), slurp(session() / file)) << file;
   const json report = json::parse(slurp(out / "report.json"));
   std::printf("replay speed-up over the capture's time: %.1fx\n", report["replay_speedup"].get<double>());
   EXPECT_TRUE(report["problems"].empty());
@@ -121,6 +170,13 @@ TEST_F(ScannedSphere, ReplayIsByteIdenticalAndFasterThanTheCapture) {
   const json changed = json::parse(slurp(out / "cm" / "report.json"));
   EXPECT_EQ(changed["parameters"]["peak_fit"], "centre_of_mass");
   EXPECT_EQ(changed["parameters"]["outlier_radius"], 2.0);
+  // Outliers removed after the steps were fed: the boundary is built again
+  // from the final points, still through all of them.
+  if (changed["outliers_removed"].get<int>() > 0) {
+    EXPECT_THAT(changed["boundary"]["built"].get<std::string>(), testing::HasSubstr("from scratch"));
+  }
+  EXPECT_EQ(changed["boundary"]["all_on_boundary"], true);
+  EXPECT_EQ(changed["boundary"]["topology"]["genus"], 0);
   // The default output folder is SESSION/replay; never overwritten without --force.
   ScratchFolder copy;
   fs::copy(session(), copy / "s", fs::copy_options::recursive);
@@ -145,6 +201,7 @@ TEST_F(ScannedSphere, StoppedScanResumesToTheSamePoints) {
   ASSERT_EQ(second.exit_code, 0) << second.err;
   EXPECT_THAT(second.out, testing::HasSubstr("scanned " + std::to_string(kSteps)));
   EXPECT_EQ(slurp(dir / "s" / "points.ply"), slurp(session() / "points.ply"));
+  EXPECT_EQ(slurp(dir / "s" / "mesh.ply"), slurp(session() / "mesh.ply"));
 }
 
 TEST_F(ScannedSphere, ScanKilledBySigtermKeepsItsStepsAndResumes) {
@@ -166,16 +223,23 @@ TEST_F(ScannedSphere, ScanKilledBySigtermKeepsItsStepsAndResumes) {
   waitpid(child, &status, 0);
   const std::size_t kept = count_lines(slurp(folder / "journal.jsonl"), "\"event\":\"step\"");
   EXPECT_GE(kept, 1u);
-  if (WIFSIGNALED(status)) {
-    EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  ASSERT_TRUE(WIFEXITED(status)) << "the scan stops after its step and writes its results";
+  if (WEXITSTATUS(status) == 128 + SIGTERM) {
     EXPECT_LT(kept, std::size_t(kSteps));
+    const json report = json::parse(slurp(folder / "report.json"));
+    EXPECT_EQ(report["stopped"]["by"], "signal " + std::to_string(SIGTERM));
+    EXPECT_EQ(report["stopped"]["after_steps"].get<std::size_t>(), kept);
+    EXPECT_FALSE(report["complete"].get<bool>());
+    EXPECT_TRUE(fs::exists(folder / "points.ply"));
   } else {
+    EXPECT_EQ(WEXITSTATUS(status), 0);
     std::printf("the scan finished before SIGTERM arrived; resuming a complete session\n");
   }
   EXPECT_EQ(slurp(lines).substr(0, 2), "00") << "lasers off after the signal (levels LASER0, LASER1, STEP, DIR, EN)";
   const Outcome resumed = scanstation("scan --resume --station " + station_arg + " -o " + out);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(slurp(folder / "points.ply"), slurp(session() / "points.ply"));
+  EXPECT_EQ(slurp(folder / "mesh.ply"), slurp(session() / "mesh.ply"));
 }
 
 TEST_F(ScannedSphere, DamagedSessionIsReportedAndWhatIsIntactReplayed) {

@@ -11,6 +11,7 @@
 #include "sim/devices/virtual_clock.h"
 #include "test_support.h"
 
+#include <atomic>
 #include <csignal>
 #include <fcntl.h>
 #include <fstream>
@@ -274,12 +275,35 @@ TEST(SafeState, SigtermWhileTheLinesAreRequestedStillEndsSafe) {
   for (const auto delay : {0us, 20us, 50us, 100us, 200us, 400us}) {
     const KilledChild child = kill_child_mid_move(delay, true);
     EXPECT_EQ(child.signal_number, SIGTERM);
-    for (std::size_t line : {0u, 1u, 3u})
-      if (line < child.levels.size()) EXPECT_FALSE(child.levels[line]) << "line " << line << ", kill after " << delay.count() << " µs";
+    for (std::size_t line : {0u, 1u, 3u}) {
+      if (line < child.levels.size()) {
+        EXPECT_FALSE(child.levels[line]) << "line " << line << ", kill after " << delay.count() << " µs";
+      }
+    }
     if (!child.journal.empty()) {
       expect_nothing_active_after_off(child.journal, 3, {0, 1, 3});
     }
   }
+}
+
+}  // namespace
+}  // namespace scanstation::drivers
+
+namespace scanstation::drivers {
+namespace {
+
+TEST(SafeState, StopWorkGuardMakesSafeAndLetsTheWorkFinish) {
+  std::atomic<int> actions{0};
+  {
+    SafeStateGuard guard(OnSignal::stop_work);
+    guard.add("count", [&] { ++actions; });
+    EXPECT_EQ(guard.signal_received(), 0);
+    raise(SIGINT);  // the process goes on: the work sees the signal and stops by itself
+    for (int i = 0; i < 2000 && guard.signal_received() == 0; ++i) std::this_thread::sleep_for(1ms);
+    EXPECT_EQ(guard.signal_received(), SIGINT);
+    EXPECT_GE(actions.load(), 1) << "the safe state came first";
+  }
+  EXPECT_GE(actions.load(), 2) << "and once more when the guard ends";
 }
 
 }  // namespace

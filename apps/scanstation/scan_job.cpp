@@ -1,0 +1,206 @@
+#include "scan_job.h"
+
+#include "acquisition/session_recording.h"
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "core/version.h"
+#include "sim/scan_objects.h"
+#include "sim/simulated_turntable.h"
+
+#include <csignal>
+#include <cstdio>
+
+namespace scanstation::app {
+
+namespace {
+
+using acquisition::SessionRecorder;
+
+SessionRecorder resume_session(CommandContext& context, const ScanJob& job) {
+  SessionRecorder recorder = SessionRecorder::resume(job.folder);
+  const auto& m = recorder.manifest();
+  if (job.steps_given && job.steps != m.steps)
+    throw InvalidInput("--steps " + std::to_string(job.steps) + ": the session was planned with " +
+                       std::to_string(m.steps) + " steps");
+  if (job.object_given && job.object != m.object.name)
+    throw InvalidInput("--object " + job.object + ": the session scans '" + m.object.name + "'");
+  if (job.parameters_given) context.log->warn("--resume keeps the session's parameters; replay to change them");
+  return recorder;
+}
+
+std::string recorded_object(const acquisition::SessionManifest& m) {
+  return m.object.mesh_file.empty() ? m.object.name : m.object.mesh_file;
+}
+
+SessionRecorder create_session(CommandContext& context, const ScanJob& job, const sim::SimulatedTurntable& simulated) {
+  acquisition::SessionManifest manifest;
+  manifest.rig = "turntable";
+  manifest.steps = job.steps;
+  manifest.station = acquisition::station_json(job.station);
+  manifest.station["sim_seed"] = job.seed;
+  manifest.geometry.camera = simulated.rig.camera;
+  for (const auto& laser : simulated.rig.lasers) manifest.geometry.lasers.push_back(laser.plane);
+  manifest.geometry.source = "simulator truth";
+  manifest.parameters = job.parameters;
+  manifest.object = {job.object, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
+  manifest.software_version = kVersion;
+  return SessionRecorder::create(job.folder, manifest, context.overwrite);
+}
+
+std::string live_detail(const station::LiveStep& s, int steps) {
+  return std::to_string(s.step + 1) + "/" + std::to_string(steps) + " steps, " + std::to_string(s.points) +
+         " points, " + std::to_string(s.boundary_faces) + " boundary triangles";
+}
+
+}  // namespace
+
+std::optional<TriangleMesh> known_object_surface(const acquisition::SessionManifest& m) {
+  if (m.station.value("/camera/backend"_json_pointer, std::string()) != "sim") return std::nullopt;
+  try {
+    if (m.object.mesh_file.empty()) return sim::scan_object(m.object.name).on_platter;
+    if (!std::filesystem::exists(m.object.mesh_file)) return std::nullopt;
+    TriangleMesh mesh = io::read_mesh(m.object.mesh_file);
+    if (mesh.face_count() == 0) return std::nullopt;
+    return mesh;
+  } catch (const InvalidInput&) {
+    return std::nullopt;
+  }
+}
+
+station::SessionProcessing session_processing(CommandContext& context, const acquisition::SessionManifest& manifest,
+                                              int density) {
+  station::SessionProcessing options;
+  options.overwrite = io::Overwrite::replace;  // the command checked what it may replace
+  options.density = density;
+  options.truth = known_object_surface(manifest);
+  const int steps = manifest.steps;
+  options.on_live_step = [&context, steps](const station::LiveStep& s) {
+    context.progress.detail(live_detail(s, steps));
+    context.progress.event("boundary", to_json(s));
+  };
+  return options;
+}
+
+void print_results(const nlohmann::json& r) {
+  const nlohmann::json& b = r["boundary"];
+  if (b.contains("error")) {
+    std::printf("no boundary: %s\n", b["error"].get<std::string>().c_str());
+  } else {
+    std::printf("boundary: %lld triangles through %lld points, %s, genus %s, %s\n", b["faces"].get<long long>(),
+                b["vertices"].get<long long>(), b["topology"]["closed"].get<bool>() ? "closed" : "OPEN",
+                b["topology"]["genus"].dump().c_str(),
+                b["all_on_boundary"].get<bool>() ? "every point on it" : "NOT every point on it");
+  }
+  if (r.contains("smoothing")) {
+    const nlohmann::json& s = r["smoothing"];
+    if (s.contains("error"))
+      std::printf("smoothing failed: %s\n", s["error"].get<std::string>().c_str());
+    else
+      std::printf("smooth surface: %zu cubic patches (%s), largest normal angle across patch edges %.2g rad\n",
+                  s["patches"].get<std::size_t>(), s["scheme"].get<std::string>().c_str(),
+                  s["g1"]["max_normal_angle"].get<double>());
+  }
+  if (r.contains("accuracy")) {
+    const nlohmann::json& a = r["accuracy"];
+    std::printf("against the true surface: points RMS %.3g (%.3f%% of the diagonal), mesh Hausdorff %.3g\n",
+                a["points"]["rms"].get<double>(), 100 * a["points"]["rms_of_diagonal"].get<double>(),
+                a["mesh"]["hausdorff"].get<double>());
+  }
+  for (const auto& [name, path] : r["outputs"].items()) std::printf("  %-8s %s\n", name.c_str(), path.get<std::string>().c_str());
+}
+
+void run_scan_job(CommandContext& context, const ScanJob& job) {
+  const drivers::StationDescription& description = job.station;
+  if (description.camera.backend != "sim")
+    throw InvalidInput("scan: a real camera needs a calibration file, which the scan does not read yet; scan on "
+                       "the simulator with --backend sim");
+  std::optional<SessionRecorder> recorder;
+  if (job.resume) recorder.emplace(resume_session(context, job));
+  // A resumed scan simulates what the session recorded, with its noise seed.
+  const std::string object = recorder ? recorded_object(recorder->manifest()) : job.object;
+  const std::uint64_t seed = recorder ? recorder->manifest().station.value("sim_seed", job.seed) : job.seed;
+  const sim::SimulatedTurntable simulated = sim::simulated_turntable(sim::scan_object(object), description, seed);
+  if (!recorder) recorder.emplace(create_session(context, job, simulated));
+  const acquisition::SessionManifest& manifest = recorder->manifest();
+  for (const std::string& note : recorder->notes()) context.log->warn("{}", note);
+
+  station::SessionProcessing processing = session_processing(context, manifest, job.density);
+  processing.live.snapshot_every = job.snapshot_every;
+  processing.live.snapshot_folder = job.folder / "snapshots";
+  processing.live.placement = manifest.object.placement;
+  processing.live.overwrite = io::Overwrite::replace;
+  station::LiveBoundary live(processing.live);
+  const auto feed = [&](int step, double angle, const std::vector<acquisition::LaserScanPoints>& clouds) {
+    processing.on_live_step(live.add_step(step, angle, clouds));
+  };
+  if (recorder->steps_done() > 0) {  // resumed: the recorded steps first, so the live boundary holds them all
+    StageTimer timer(context.report, "resume_replay");
+    acquisition::ReplayOptions replay;
+    replay.on_step = [&](int step, double angle, const auto& clouds, Eigen::Index) { feed(step, angle, clouds); };
+    acquisition::replay_session(acquisition::read_session(job.folder), replay);
+  }
+
+  // Guarded before the first line is requested: a signal at any moment leaves
+  // the station safe, and the capture stops after the step it is taking.
+  sim::GuardedStation station(description, sim::camera_role | sim::laser_role | sim::turntable_role, simulated.frames,
+                              drivers::OnSignal::stop_work);
+  for (const auto& note : station->notes) context.log->warn("{}", note);
+  acquisition::TurntableScanDevices devices{*station->camera, {}, *station->turntable, *station->clock,
+                                            description.camera.timeout};
+  for (auto& laser : station->lasers) devices.lasers.push_back(laser.get());
+
+  StageTimer capture(context.report, "capture");
+  const ProgressCallback progress = context.progress.stage("scan");
+  acquisition::RecordingOutcome outcome;
+  std::string stopped_by;
+  Eigen::Index points = 0;
+  try {
+    outcome = acquisition::record_turntable_session(
+        devices, *recorder,
+        [&](const acquisition::CapturedStep& step, const std::vector<acquisition::LaserScanPoints>& clouds) {
+          for (const auto& cloud : clouds) points += cloud.cloud.size();
+          context.progress.event("step", {{"step", step.step},
+                                          {"angle_deg", step.angle_deg},
+                                          {"steps_done", step.step + 1},
+                                          {"steps", manifest.steps},
+                                          {"points", points}});
+          feed(step.step, step.angle_deg, clouds);
+          if (progress) progress(double(step.step + 1) / manifest.steps);
+        },
+        job.stop_after.value_or(0), [&] { return station.signal_received() != 0; });
+  } catch (const std::exception& e) {
+    // Whatever ended the capture (a signal cutting a move short, an unplugged
+    // camera), the recorded steps are processed below.
+    stopped_by = station.signal_received() ? "signal " + std::to_string(station.signal_received()) : e.what();
+    outcome.steps_done = recorder->steps_done();
+  }
+  if (stopped_by.empty() && station.signal_received()) stopped_by = "signal " + std::to_string(station.signal_received());
+  context.progress.finish();
+  capture.stop();
+  station->make_safe();
+
+  StageTimer process(context.report, "process");
+  processing.replay.progress = context.progress.stage("process");
+  processing.extra = {{"recorded_now", outcome.recorded_now}, {"live_boundary_seconds", live.seconds()}};
+  if (!stopped_by.empty()) processing.extra["stopped"] = {{"by", stopped_by}, {"after_steps", outcome.steps_done}};
+  const nlohmann::json report =
+      station::process_session(acquisition::read_session(job.folder), job.folder, processing, &live);
+  context.progress.finish();
+  process.stop();
+  for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "object", "boundary",
+                          "smoothing", "accuracy", "outputs", "stopped"})
+    if (report.contains(key)) context.report[key] = report[key];
+  context.report["session"] = job.folder.string();
+  const bool complete = report["complete"].get<bool>();
+  std::printf("%s %d of %d steps (%d now), %lld points\n", complete ? "scanned" : "stopped after",
+              outcome.steps_done, manifest.steps, outcome.recorded_now, report["points"].get<long long>());
+  print_results(report);
+  if (!stopped_by.empty()) {
+    std::printf("stopped by %s; the session keeps every completed step\n", stopped_by.c_str());
+    const int signal = station.signal_received();
+    context.exit_code = signal ? 128 + signal : 3;
+  }
+  if (!complete) std::printf("continue with: scanstation scan --resume -o %s\n", job.folder.c_str());
+}
+
+}  // namespace scanstation::app

@@ -1,0 +1,104 @@
+#include "smoothing/surface_smoothing.h"
+
+#include "core/errors.h"
+#include "smoothing/mesh_edges.h"
+#include "smoothing/sign_condition.h"
+#include "smoothing/six_split.h"
+#include "smoothing/three_split.h"
+#include "smoothing/two_split.h"
+
+#include <chrono>
+
+namespace scanstation {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::string scheme_name(SplitScheme scheme) {
+  switch (scheme) {
+    case SplitScheme::six_split: return "six-split";
+    case SplitScheme::three_split: return "three-split";
+    case SplitScheme::adaptive_two_split: return "adaptive-two-split";
+  }
+  return "";
+}
+
+SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothingOptions& options) {
+  if (mesh.face_count() == 0) throw InvalidInput("no triangles; smoothing needs a closed mesh");
+  const Eigen::MatrixX3d& V = mesh.vertices.positions;
+  SurfaceSmoothing result;
+  auto start = std::chrono::steady_clock::now();
+  Eigen::MatrixX3d N;
+  if (options.given_normals) {
+    if (options.given_normals->rows() != V.rows())
+      throw InvalidInput("given normals: " + std::to_string(options.given_normals->rows()) + " rows for " +
+                         std::to_string(V.rows()) + " vertices");
+    N = options.given_normals->rowwise().normalized();
+  } else {
+    N = vertex_normals(V, mesh.faces, options.normals);
+  }
+  MeshEdges edges;
+  try {
+    edges = mesh_edges(mesh.faces);
+  } catch (const TopologyError& e) {
+    throw InvalidInput(e.what());
+  }
+  result.adjusted_vertices = enforce_sign_condition(V, mesh.faces, N);
+  result.sign_condition_violations = sign_condition_violations(V, mesh.faces, N).size();
+  result.normals_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  const ThreeSplitOptions three_split_options{options.least_squares_ratio, options.tension};
+  switch (options.scheme) {
+    case SplitScheme::six_split: result.surface = six_split(V, mesh.faces, N, edges, options.tension); break;
+    case SplitScheme::three_split: result.surface = three_split(V, mesh.faces, N, edges, three_split_options); break;
+    case SplitScheme::adaptive_two_split: {
+      const std::vector<TwoSplitPair> pairs = two_split_pairs(V, mesh.faces, edges, options.min_angle);
+      result.surface = two_split(V, mesh.faces, N, edges, pairs, three_split_options);
+      result.two_split_candidates = 2 * pairs.size();
+      // Candidates whose pair would violate the G¹ orientation stay three-split.
+      result.two_split_triangles = 3 * std::size_t(mesh.face_count()) - result.surface.patches.size();
+      break;
+    }
+  }
+  result.patches_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  result.g1 = verify_g1(result.surface);
+  result.oscillation = oscillation(result.surface, V, mesh.faces);
+  result.verification_seconds = seconds_since(start);
+  return result;
+}
+
+nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothingOptions& options,
+                                Eigen::Index macro_triangles) {
+  nlohmann::json report = {
+      {"scheme", scheme_name(options.scheme)},
+      {"tension", options.tension},
+      {"macro_triangles", macro_triangles},
+      {"patches", s.surface.patches.size()},
+      {"adjusted_vertices", s.adjusted_vertices},
+      {"sign_condition_violations", s.sign_condition_violations},
+      {"dependent_edges", s.surface.dependent_edges},
+      {"g1", {{"max_normal_angle", s.g1.max_normal_angle},
+              {"max_tangent_plane_residual", s.g1.max_residual},
+              {"shared_edges", s.g1.shared_edges},
+              {"samples", s.g1.samples},
+              {"unmatched_edges", s.g1.unmatched_edges}}},
+      {"oscillation", {{"max_relative", s.oscillation.max_relative}, {"mean_relative", s.oscillation.mean_relative}}}};
+  if (options.scheme != SplitScheme::six_split)
+    report["ratio"] = options.least_squares_ratio ? "least-squares" : "one";
+  if (options.scheme == SplitScheme::adaptive_two_split) {
+    report["min_angle"] = options.min_angle;
+    report["two_split_candidates"] = s.two_split_candidates;
+    report["two_split_triangles"] = s.two_split_triangles;
+  }
+  return report;
+}
+
+}  // namespace scanstation

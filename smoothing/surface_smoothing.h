@@ -1,0 +1,63 @@
+// The whole G¹ surface stage over a closed triangle mesh (thesis §9.4–§9.8):
+// vertex normals, the sign-condition adjustment, one splitting scheme, and
+// the built-in verification — what `scanstation smooth` and the station flow
+// run.
+#pragma once
+
+#include "core/triangle_mesh.h"
+#include "smoothing/bezier_surface.h"
+#include "smoothing/g1_verification.h"
+#include "smoothing/oscillation.h"
+#include "smoothing/vertex_normals.h"
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace scanstation {
+
+enum class SplitScheme { six_split, three_split, adaptive_two_split };
+
+/// "six-split", "three-split" or "adaptive-two-split".
+std::string scheme_name(SplitScheme scheme);
+
+/// scheme        §9.8 (least oscillation), §9.6, or §9.7 on thin triangles
+/// normals       the weighting of §9.4, unless given_normals (#V by 3) is set
+/// tension       the Step-2 constant (1/3 in the thesis)
+/// least_squares_ratio  three-/two-split Step 5: the free ratio by least squares
+/// min_angle     adaptive two-split: triangles with a smaller angle (degrees)
+struct SurfaceSmoothingOptions {
+  SplitScheme scheme = SplitScheme::six_split;
+  NormalWeighting normals = NormalWeighting::area;
+  std::optional<Eigen::MatrixX3d> given_normals;
+  double tension = 1.0 / 3.0;
+  bool least_squares_ratio = true;
+  double min_angle = 20.0;
+};
+
+/// surface             the cubic patches
+/// adjusted_vertices   normals changed so that the sign condition holds (§9.6)
+/// sign_condition_violations  vertices where it still fails (not G¹ there)
+/// two_split_candidates  macro triangles below min_angle (adaptive two-split)
+/// two_split_triangles   of those, the ones actually two-split
+/// g1, oscillation      the verification (Eq. 8.7) and the oscillation measure
+struct SurfaceSmoothing {
+  BezierSurface surface;
+  std::vector<int> adjusted_vertices;
+  std::size_t sign_condition_violations = 0;
+  std::size_t two_split_candidates = 0, two_split_triangles = 0;
+  G1Verification g1;
+  Oscillation oscillation;
+  double normals_seconds = 0, patches_seconds = 0, verification_seconds = 0;
+};
+
+/// mesh  closed, oriented, 2-manifold (throws InvalidInput naming the problem
+/// otherwise, or when it has no faces).
+SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothingOptions& options = {});
+
+/// The report's "result" object: scheme, counts, G¹ verification, oscillation.
+nlohmann::json smoothing_report(const SurfaceSmoothing& smoothing, const SurfaceSmoothingOptions& options,
+                                Eigen::Index macro_triangles);
+
+}  // namespace scanstation

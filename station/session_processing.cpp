@@ -1,0 +1,195 @@
+#include "station/session_processing.h"
+
+#include "core/describe.h"
+#include "core/errors.h"
+#include "core/io/mesh_io.h"
+#include "core/mesh_measures.h"
+#include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/surface_distance.h"
+#include "smoothing/patches_json.h"
+#include "smoothing/shaded_preview.h"
+#include "smoothing/tessellation.h"
+
+#include <chrono>
+
+namespace scanstation::station {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - start_).count();
+    start_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// The final boundary and how it was obtained; its vertices index the final
+// points through `source`.
+struct FinalBoundary {
+  SurfaceReconstruction surface;
+  std::string built;  // "live", "grown in the replay", "from scratch: …"
+  std::string error;  // why there is none
+};
+
+FinalBoundary final_boundary(const LiveBoundary* live, bool live_is_valid, const acquisition::ScanResult& result,
+                             const std::string& why_not_live) {
+  FinalBoundary b;
+  try {
+    if (live_is_valid) {
+      b.surface = live->constriction().surface();
+      b.built = live->steps() > 0 ? "incremental" : "none";
+    } else {
+      b.surface = reconstruct_surface(result.points.cloud.positions, surface_defaults());
+      b.built = "from scratch: " + why_not_live;
+    }
+  } catch (const InvalidInput& e) {
+    b.error = e.what();
+  }
+  if (b.error.empty() && b.surface.mesh.face_count() == 0)
+    b.error = "the " + std::to_string(result.points.cloud.size()) + " points do not span a volume";
+  return b;
+}
+
+// The boundary in the final points' own coordinates and colours: vertex i is
+// the final point source[i], bit for bit.
+TriangleMesh boundary_mesh(const FinalBoundary& b, const acquisition::ScanResult& result) {
+  TriangleMesh mesh;
+  mesh.faces = b.surface.mesh.faces;
+  const PointCloud& points = result.points.cloud;
+  mesh.vertices.positions = points.positions(b.surface.source, Eigen::all);
+  if (points.has_colors()) mesh.vertices.colors = points.colors(b.surface.source, Eigen::all);
+  return mesh;
+}
+
+}  // namespace
+
+json process_session(const acquisition::SessionContents& session, const fs::path& folder,
+                     const SessionProcessing& options, const LiveBoundary* grown) {
+  const fs::path mesh_path = folder / "mesh.ply", smooth_path = folder / "smooth.ply",
+                 patches_path = folder / "patches.json", preview_path = folder / "preview.png";
+  for (const char* name : {"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png", "report.json"})
+    io::check_writable(folder / name, options.overwrite);
+  Stopwatch watch;
+  json seconds;
+
+  // Replay: the points again, step by step, into a boundary grown here
+  // unless the scan grew one live.
+  std::optional<LiveBoundary> here;
+  if (!grown) {
+    LiveBoundaryOptions live = options.live;
+    live.placement = session.manifest.object.placement;
+    here.emplace(live);
+  }
+  StreamDigest digest;
+  acquisition::ReplayOptions replay = options.replay;
+  replay.on_step = [&](int step, double angle, const std::vector<acquisition::LaserScanPoints>& clouds,
+                       Eigen::Index so_far) {
+    if (here) {
+      const LiveStep live = here->add_step(step, angle, clouds);
+      if (options.on_live_step) options.on_live_step(live);
+    } else {
+      digest.add(clouds);
+    }
+    if (options.replay.on_step) options.replay.on_step(step, angle, clouds, so_far);
+  };
+  const acquisition::ScanResult result = acquisition::replay_session(session, replay);
+  const LiveBoundary* live = here ? &*here : grown;
+  seconds["replay"] = watch.lap();
+  if (here) seconds["live_boundary"] = here->seconds();
+
+  std::string why_not_live;
+  if (result.outliers_removed > 0)
+    why_not_live = std::to_string(result.outliers_removed) + " outliers were removed after the steps were fed";
+  else if (!here && digest.value() != grown->digest())
+    why_not_live = "the points fed live differ from the recorded session's";
+  const FinalBoundary boundary = final_boundary(live, why_not_live.empty(), result, why_not_live);
+  seconds["final_boundary"] = watch.lap();
+
+  json report = options.extra;
+  json outputs = {{"points", (folder / "points.ply").string()}, {"report", (folder / "report.json").string()}};
+  json& boundary_report = report["boundary"];
+  if (!boundary.error.empty()) {
+    boundary_report = {{"error", boundary.error}};
+  } else {
+    const TriangleMesh mesh = boundary_mesh(boundary, result);
+    const BoundaryStatistics& st = boundary.surface.statistics;
+    boundary_report = describe(mesh);
+    boundary_report["built"] = boundary.built;
+    boundary_report["all_on_boundary"] = st.all_on_boundary;
+    boundary_report["distinct_points"] = mesh.vertex_count() + static_cast<Eigen::Index>(st.interior_vertices.size());
+    boundary_report["duplicates_merged"] = st.duplicates_merged;
+    boundary_report["enclosed_volume"] = enclosed_volume(mesh.vertices.positions, mesh.faces);
+    if (live) boundary_report["live"] = {{"steps", live->steps()}, {"wider_repairs", live->constriction().wider_repairs()}};
+    fs::create_directories(folder);
+    io::write_mesh(mesh_path, mesh, {std::nullopt, std::nullopt, options.overwrite});
+    outputs["mesh"] = mesh_path.string();
+    seconds["write_mesh"] = watch.lap();
+
+    std::optional<SurfaceSmoothing> smooth;
+    try {
+      smooth = smooth_surface(mesh, options.smoothing);
+      report["smoothing"] = smoothing_report(*smooth, options.smoothing, mesh.face_count());
+    } catch (const std::exception& e) {
+      report["smoothing"] = {{"error", e.what()}};
+    }
+    seconds["smoothing"] = watch.lap();
+    std::optional<TriangleMesh> coarse;  // the smooth surface, tessellated lightly for the picture and the accuracy
+    if (smooth) {
+      write_tessellation_ply(smooth->surface, options.density, smooth_path, options.overwrite);
+      io::write_file_atomically(patches_path, patches_json(smooth->surface, scheme_name(options.smoothing.scheme)),
+                                options.overwrite);
+      outputs["smooth"] = smooth_path.string();
+      outputs["patches"] = patches_path.string();
+      coarse = tessellate(smooth->surface, mesh.face_count() > 20000 ? 1 : 2);
+    }
+    if (options.preview_px > 0) {
+      io::write_file_atomically(preview_path,
+                                shaded_preview_png(mesh, coarse ? *coarse : TriangleMesh{},
+                                                   {options.preview_px, Eigen::Vector3d::UnitZ()}),
+                                options.overwrite);
+      outputs["preview"] = preview_path.string();
+    }
+    seconds["write_surface"] = watch.lap();
+
+    if (options.truth) {
+      // At most kSamples points each way: the measure stays seconds on large meshes.
+      constexpr Eigen::Index kSamples = 50000;
+      const TriangleMesh& truth = *options.truth;
+      const auto& T = truth.vertices.positions;
+      const double diagonal = (T.colwise().maxCoeff() - T.colwise().minCoeff()).norm();
+      const SurfaceDistance to_truth(truth);
+      const Eigen::MatrixX3d truth_samples = surface_samples(truth, kSamples);
+      const SurfaceDeviation to_mesh = surface_deviation(mesh, to_truth, truth_samples, kSamples);
+      json accuracy = {
+          {"truth_diagonal", diagonal},
+          {"points", to_json(summarize_distances(to_truth(result.points.cloud.positions)), diagonal)},
+          {"mesh", {{"to_truth", to_json(to_mesh.to_truth, diagonal)},
+                    {"from_truth", to_json(to_mesh.from_truth, diagonal)},
+                    {"hausdorff", to_mesh.hausdorff()},
+                    {"hausdorff_of_diagonal", to_mesh.hausdorff() / diagonal}}}};
+      if (coarse) {
+        const SurfaceDeviation to_smooth = surface_deviation(*coarse, to_truth, truth_samples, kSamples);
+        accuracy["smooth"] = {{"to_truth", to_json(to_smooth.to_truth, diagonal)},
+                              {"from_truth", to_json(to_smooth.from_truth, diagonal)},
+                              {"hausdorff", to_smooth.hausdorff()},
+                              {"hausdorff_of_diagonal", to_smooth.hausdorff() / diagonal}};
+      }
+      report["accuracy"] = accuracy;
+      seconds["accuracy"] = watch.lap();
+    }
+  }
+  report["outputs"] = outputs;
+  report["stage_seconds"] = seconds;
+  return acquisition::write_scan_results(folder, session, result, report, options.overwrite);
+}
+
+}  // namespace scanstation::station
