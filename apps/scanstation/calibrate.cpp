@@ -12,8 +12,8 @@
 #include "core/version.h"
 #include "image_list.h"
 #include "sim/calibration_views.h"
+#include "sim/simulated_turntable.h"
 #include "sim/stereo_rig.h"
-#include "sim/turntable_rig.h"
 #include "station_options.h"
 
 #include <opencv2/core/eigen.hpp>
@@ -32,8 +32,6 @@ using acquisition::StationCalibration;
 using nlohmann::json;
 
 constexpr double degree = std::numbers::pi / 180.0;
-// The simulated rig: a platter of 60 mm radius framed for an 80 mm object.
-constexpr double sim_object_height = 80.0, sim_platter_radius = 60.0;
 
 double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::clamp(std::abs(a.normalized().dot(b.normalized())), 0.0, 1.0));
@@ -90,7 +88,10 @@ class CalibrateCommand final : public Command {
     if (sim_ && !(images_.empty() && off_images_.empty() && on_images_.empty() && left_images_.empty() &&
                   right_images_.empty()))
       throw InvalidInput("calibrate: give images or --backend sim, not both");
-    if (sim_) rig_ = sim::turntable_laser_rig(sim_object_height, sim_platter_radius, size_.width, size_.height);
+    if (sim_) {
+      rig_ = sim::station_rig(description_);  // the rig `scan --backend sim` scans with
+      size_ = {rig_.camera.width, rig_.camera.height};
+    }
     StationCalibration calibration = open_calibration(context);
     const std::string part = cli_->get_subcommands().front()->get_name();
     json& result = context.report["result"];
@@ -142,12 +143,8 @@ class CalibrateCommand final : public Command {
 
   sim::Scene sim_scene() const {
     sim::Scene scene;
-    scene.platter_radius = sim_platter_radius;
+    scene.platter_radius = sim::kSimulatedPlatterRadius;
     scene.lasers = rig_.lasers;
-    if (description_.lasers.size() > scene.lasers.size())
-      throw InvalidInput("--backend sim: the simulated rig has " + std::to_string(scene.lasers.size()) +
-                         " lasers, the station " + std::to_string(description_.lasers.size()));
-    scene.lasers.resize(description_.lasers.size());
     return scene;
   }
 
@@ -323,7 +320,7 @@ class CalibrateCommand final : public Command {
     std::vector<cv::Mat> left, right;
     if (sim_) {
       const sim::StereoRig pair =
-          sim::stereo_rig(sim_object_height, sim_platter_radius, size_.width, size_.height, sim_baseline_);
+          sim::stereo_rig(sim::kSimulatedRigHeight, sim::kSimulatedPlatterRadius, size_.width, size_.height, sim_baseline_);
       left = sim_board_images(context, pair.left, 1);
       right = sim_board_images(context, pair.right, 5000);
     } else {

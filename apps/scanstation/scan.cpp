@@ -1,5 +1,6 @@
 // scanstation scan: a turntable laser scan recorded into a session folder
 // (acquisition/session.h), then processed into points.ply and report.json.
+#include "acquisition/scan_calibration.h"
 #include "acquisition/session_recording.h"
 #include "acquisition/session_replay.h"
 #include "command.h"
@@ -35,6 +36,14 @@ class ScanCommand final : public Command {
         ->check(CLI::Range(1, 100000));
     cli_->add_option("--seed", seed_, "Seed of the simulated sensor noise")->capture_default_str();
     cli_->add_option("-o,--output", folder_, "Session folder")->required();
+    // Calibration (acquisition/scan_calibration.h): which geometry the scan triangulates with.
+    cli_->add_option("--calibration", calibration_,
+                     "Station calibration file (default: the one the station description names; on the simulator "
+                     "without one, or with 'sim-truth', the simulator's true geometry)");
+    cli_->add_option("--calibration-max-age", calibration_max_age_,
+                     "Refuse a calibration whose oldest part is older than this (days; 0: any age)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     parameters_.add_to(*cli_);
   }
 
@@ -44,7 +53,7 @@ class ScanCommand final : public Command {
                          "--rig turntable");
     const drivers::StationDescription description = station_.description();
     if (description.camera.backend != "sim")
-      throw InvalidInput("scan: a real camera needs a calibration file, which the scan does not read yet; scan on "
+      throw InvalidInput("scan: the scan drives simulated devices only (real stations are being wired); scan on "
                          "the simulator with --backend sim");
     std::optional<SessionRecorder> recorder;
     if (resume_) recorder.emplace(resume_session(context));
@@ -91,8 +100,9 @@ class ScanCommand final : public Command {
     const nlohmann::json report = acquisition::write_scan_results(
         folder_, contents, result, {{"recorded_now", outcome.recorded_now}}, io::Overwrite::replace);
     process.stop();
-    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "object"})
+    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "object", "laser_agreement"})
       context.report[key] = report[key];
+    if (const auto warning = acquisition::laser_agreement_warning(result)) context.log->warn("{}", *warning);
     context.report["session"] = folder_.string();
     std::printf("%s %d of %d steps (%d now), %lld points: %s\n", outcome.complete ? "scanned" : "stopped after",
                 outcome.steps_done, manifest.steps, outcome.recorded_now,
@@ -124,9 +134,8 @@ class ScanCommand final : public Command {
     manifest.steps = steps_;
     manifest.station = acquisition::station_json(description);
     manifest.station["sim_seed"] = seed_;
-    manifest.geometry.camera = simulated.rig.camera;
-    for (const auto& laser : simulated.rig.lasers) manifest.geometry.lasers.push_back(laser.plane);
-    manifest.geometry.source = "simulator truth";
+    manifest.geometry = acquisition::scan_geometry(calibration_, description, sim::truth_geometry(simulated.rig),
+                                                   calibration_max_age_);
     manifest.parameters = parameters_.apply({});
     manifest.object = {object_, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
     manifest.software_version = kVersion;
@@ -142,6 +151,8 @@ class ScanCommand final : public Command {
   std::uint64_t seed_ = 1;
   std::filesystem::path folder_;
   ScanParameterOptions parameters_;
+  std::string calibration_;
+  double calibration_max_age_ = acquisition::kCalibrationMaxAgeDays;
 };
 
 }  // namespace
