@@ -13,12 +13,12 @@
 namespace scanstation {
 namespace {
 
+using test::Outcome;
+using test::scanstation;
+using test::ScratchFolder;
+using test::slurp;
 namespace fs = std::filesystem;
 using nlohmann::json;
-using test::Outcome;
-using test::ScratchFolder;
-using test::scanstation;
-using test::slurp;
 
 fs::path write_station(const ScratchFolder& dir, const std::string& name, int width, int height,
                        const std::string& extra = "") {
