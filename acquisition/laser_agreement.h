@@ -5,6 +5,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <string>
 
 namespace scanstation::acquisition {
 
@@ -24,5 +27,43 @@ struct LaserAgreement {
 /// radius  neighbourhood for B's local surface: about 1.5 times the spacing
 ///         of B's stripes on the object
 LaserAgreement laser_agreement(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, double radius);
+
+/// Two lasers disagree when the median distance between their clouds exceeds
+/// this fraction of the scan's bounding-box diagonal: twice the accuracy
+/// budget (0.05% of the diagonal), which laser planes true to the rig stay
+/// well within, while a plane 0.3 mm off on a 60 mm object exceeds it.
+inline constexpr double kLaserAgreementLimit = 1e-3;
+/// The local fit is trusted only over neighbourhoods up to this fraction of
+/// the diagonal: with few turntable steps the stripes lie far apart and a
+/// quadric over such a wide patch no longer follows the surface (false flags).
+inline constexpr double kLaserAgreementMaxRadius = 0.1;
+
+/// The check a scan reports for its two lasers.
+/// checked    false when it could not be made (`reason` says why: one laser,
+///            an empty cloud, stripes too far apart for the steps per turn)
+/// radius     neighbourhood used: 1.6 × the stripe spacing at the median
+///            distance of b's points from the turntable axis (z)
+/// limit      kLaserAgreementLimit × diagonal (station units)
+/// agree      median_distance ≤ limit (true when not checked)
+struct LaserAgreementCheck {
+  bool checked = false, agree = true;
+  std::string reason;
+  double radius = 0, diagonal = 0, limit = 0;
+  LaserAgreement agreement;
+};
+
+/// a, b   the two lasers' clouds in the platter's object frame (z the axis)
+/// steps  turntable steps per turn: each laser's stripes are 360°/steps apart
+/// At most `max_compared` of a's points (evenly strided) are compared.
+LaserAgreementCheck check_laser_agreement(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, int steps,
+                                          Eigen::Index max_compared = 5000);
+
+/// {"checked", "agree", "reason"?, "median_distance", "p90_distance",
+///  "compared", "radius", "limit", "diagonal"}
+nlohmann::json to_json(const LaserAgreementCheck& check);
+
+/// "lasers 0 and 1 disagree: ..." with what to do, when the check was made
+/// and failed; "" otherwise.
+std::string laser_disagreement_message(const LaserAgreementCheck& check);
 
 }  // namespace scanstation::acquisition

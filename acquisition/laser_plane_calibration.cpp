@@ -34,7 +34,17 @@ std::vector<Eigen::Vector3d> laser_points_on_board(const LaserLine& line, const 
     const double facing = n.dot(ray);
     if (std::abs(facing) < 1e-6) continue;  // a ray along the board: no intersection
     const double t = offset / facing;
-    if (t > 0) points.push_back(t * ray);
+    if (!(t > 0)) continue;
+    // Near a square's edge the stripe's two flanks lie on different albedos
+    // (black and white squares), which pulls its centre towards the white
+    // side: such points are left out.
+    const Eigen::Vector3d on_board = pose.rotation.transpose() * (t * ray - pose.translation);
+    const auto near_edge = [&](double coordinate) {
+      const double fraction = coordinate / options.square_size - std::floor(coordinate / options.square_size);
+      return std::min(fraction, 1.0 - fraction) < options.edge_margin;
+    };
+    if (near_edge(on_board.x()) || near_edge(on_board.y())) continue;
+    points.push_back(t * ray);
   }
   return points;
 }

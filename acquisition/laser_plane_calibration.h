@@ -26,6 +26,8 @@ struct LaserBoardView {
 /// line                 stripe extraction (acquisition/laser_line.h)
 /// board_margin         stripe centres within the pattern shrunk by this many
 ///                      squares are used: the stripe blurs where it leaves the board
+/// edge_margin          stripe centres closer than this many squares to a
+///                      square's edge are left out (the albedo step biases them)
 /// inlier_distance      RANSAC inlier band (station units) around a candidate plane
 /// ransac_iterations, seed  RANSAC trials (deterministic: same seed, same plane)
 struct LaserPlaneOptions {
@@ -33,6 +35,7 @@ struct LaserPlaneOptions {
   double square_size = 8.0;
   LaserLineOptions line;
   double board_margin = 0.25;
+  double edge_margin = 0.1;
   double inlier_distance = 0.5;
   int ransac_iterations = 1000;
   std::uint64_t seed = 1;

@@ -88,6 +88,7 @@ void read_geometry(const json& manifest, const std::string& where, SessionConten
   const json* digests = find(manifest, "geometry_digest");
   TurntableGeometry& g = contents.manifest.geometry;
   if (const json* source = find(*geometry, "source"); source && source->is_string()) g.source = *source;
+  if (const json* calibration = find(*geometry, "calibration")) g.calibration = *calibration;
   const json* camera = find(*geometry, "camera");
   if (!camera) throw InvalidInput(where + ": missing field \"geometry.camera\"");
   g.camera = pinhole_camera_from_json(*camera, where + ": geometry.camera");

@@ -85,12 +85,22 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
     if (options.on_step) options.on_step(step.step, step.angle_deg, clouds, result.points.cloud.size());
     if (options.progress) options.progress(double(s + 1) / double(session.steps.size()));
   }
+  if (result.by_laser.size() == 2)
+    result.laser_agreement = check_laser_agreement(result.by_laser[0].cloud.positions,
+                                                   result.by_laser[1].cloud.positions, session.manifest.steps);
   if (result.parameters.outlier_radius > 0)
     result.outliers_removed =
         remove_isolated_points(result.points, result.parameters.outlier_radius, result.parameters.outlier_neighbours);
   result.points.cloud.positions = own_coordinates(result.points.cloud.positions, session.manifest.object.placement);
   result.process_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+std::optional<std::string> laser_agreement_warning(const ScanResult& result) {
+  if (!result.laser_agreement) return std::nullopt;
+  std::string message = laser_disagreement_message(*result.laser_agreement);
+  if (message.empty()) return std::nullopt;
+  return message;
 }
 
 json write_scan_results(const fs::path& folder, const SessionContents& session, const ScanResult& result,
@@ -113,6 +123,7 @@ json write_scan_results(const fs::path& folder, const SessionContents& session, 
       {"outliers_removed", result.outliers_removed},
       {"parameters", to_json(result.parameters)},
       {"problems", result.problems},
+      {"laser_agreement", result.laser_agreement ? to_json(*result.laser_agreement) : json(nullptr)},
       {"seconds", {{"capture", result.capture_seconds}, {"processing", result.process_seconds}}},
       {"replay_speedup", result.process_seconds > 0 ? json(result.capture_seconds / result.process_seconds)
                                                     : json(nullptr)},

@@ -4,6 +4,7 @@
 // points.ply, byte for byte.
 #pragma once
 
+#include "acquisition/laser_agreement.h"
 #include "acquisition/session.h"
 #include "acquisition/turntable_step_points.h"
 #include "core/progress.h"
@@ -35,6 +36,8 @@ struct ReplayOptions {
 /// steps_used        steps that gave frames to process
 /// problems          the session's damage (read_session) and every frame
 ///                   that could not be used, each naming its file
+/// laser_agreement   with two lasers: the distance between their clouds
+///                   (check_laser_agreement over the planned steps per turn)
 /// capture_seconds   the recorded steps' own duration (move start to last frame)
 /// process_seconds   wall time of the processing
 struct ScanResult {
@@ -44,6 +47,7 @@ struct ScanResult {
   Eigen::Index outliers_removed = 0;
   LaserScanParameters parameters;
   std::vector<std::string> problems;
+  std::optional<LaserAgreementCheck> laser_agreement;
   double capture_seconds = 0, process_seconds = 0;
 };
 
@@ -56,9 +60,13 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
 /// A frame of a session as recorded (8 or 16 bit); empty if missing or unreadable.
 cv::Mat read_session_frame(const std::filesystem::path& file);
 
+/// The warning to print when the scan's two lasers disagree (laser_disagreement_message), else nullopt.
+std::optional<std::string> laser_agreement_warning(const ScanResult& result);
+
 /// Writes `folder`/points.ply (binary, with colours) and `folder`/report.json:
 /// session, steps planned/recorded/used, points per laser, outliers, the
-/// parameters, problems, capture and processing seconds and their ratio.
+/// parameters, problems, laser agreement (null with one laser), capture and
+/// processing seconds and their ratio.
 /// `extra` is merged into the report. Returns the report.
 nlohmann::json write_scan_results(const std::filesystem::path& folder, const SessionContents& session,
                                   const ScanResult& result, const nlohmann::json& extra, io::Overwrite overwrite);

@@ -9,7 +9,10 @@ namespace scanstation::acquisition {
 nlohmann::json to_json(const TurntableGeometry& geometry) {
   nlohmann::json lasers = nlohmann::json::array();
   for (const LaserPlane& plane : geometry.lasers) lasers.push_back(scanstation::to_json(plane));
-  return {{"source", geometry.source}, {"camera", scanstation::to_json(geometry.camera)}, {"lasers", lasers}};
+  nlohmann::json document = {
+      {"source", geometry.source}, {"camera", scanstation::to_json(geometry.camera)}, {"lasers", lasers}};
+  if (!geometry.calibration.is_null()) document["calibration"] = geometry.calibration;
+  return document;
 }
 
 std::string json_digest(const nlohmann::json& value) {

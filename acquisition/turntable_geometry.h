@@ -15,14 +15,18 @@ namespace scanstation::acquisition {
 /// camera  the calibrated camera (intrinsics, distortion, pose)
 /// lasers  light plane of laser i at index i
 /// source  where it came from ("simulator truth", a calibration file, ...)
+/// calibration  what identifies the calibration file it came from (its
+///         station fingerprint, dates; scan_calibration.h), null otherwise
 struct TurntableGeometry {
   PinholeCamera camera;
   std::vector<LaserPlane> lasers;
   std::string source;
+  nlohmann::json calibration;
 };
 
-/// {"source", "camera": {...}, "lasers": [{...}, ...]} with the keys of
-/// core/io/station_geometry_json.h.
+/// {"source", "camera": {...}, "lasers": [{...}, ...], "calibration": {...}}
+/// with the keys of core/io/station_geometry_json.h ("calibration" only when
+/// not null).
 nlohmann::json to_json(const TurntableGeometry& geometry);
 
 /// A digest (FNV-1a, 16 hex digits) of a JSON value's compact text: recorded

@@ -198,11 +198,13 @@ StationDescription read_station(const std::filesystem::path& file) {
     throw FormatError(FileLocation::at_line(file, e.source().begin.line), std::string(e.description()));
   }
   const Section top(root, "", file);
-  top.only({"name", "gpio_chip", "consumer", "camera", "laser", "turntable", "usb", "sim"});
+  top.only({"name", "gpio_chip", "consumer", "calibration", "camera", "laser", "turntable", "usb", "sim"});
   StationDescription station;
   station.source = file;
   station.name = top.text("name", file.stem().string());
   station.consumer = top.text("consumer", station.consumer);
+  if (const std::string calibration = top.text("calibration", ""); !calibration.empty())
+    station.calibration = file.parent_path() / calibration;  // an absolute path stays as it is
   const std::string chip = top.text("gpio_chip", "gpiochip0");
   if (const toml::table* t = top.table("camera")) station.camera = read_camera(Section(*t, "camera", file));
   if (const toml::node* lasers = root.get("laser")) {

@@ -43,6 +43,9 @@ struct TurntableRole {
 struct StationDescription {
   std::string name = "sim";
   std::filesystem::path source;  // the file read, "" for built-in
+  // The station's calibration file (`calibration = "..."`, relative to the
+  // description's folder), which `scan` uses by default; "" when none is named.
+  std::filesystem::path calibration;
   std::string consumer = "scanstation";  // GPIO consumer label
   CameraRole camera;
   std::vector<LaserRole> lasers{LaserRole{}};

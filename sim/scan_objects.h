@@ -1,6 +1,7 @@
 // Objects for the simulated turntable: the built-in shapes with known
 // surfaces (in millimetres, standing on the platter) and any mesh file,
-// placed and scaled to fit the rig.
+// placed and scaled to fit the station's fixed rig (sim/simulated_turntable.h:
+// within 40 mm of the axis, up to 80 mm high).
 #pragma once
 
 #include "core/triangle_mesh.h"
@@ -10,6 +11,11 @@
 #include <vector>
 
 namespace scanstation::sim {
+
+/// The station's simulated rig frames objects up to this height (station
+/// units, mm) standing within kSimulatedObjectRadius of the turntable axis.
+inline constexpr double kSimulatedRigHeight = 80.0;
+inline constexpr double kSimulatedObjectRadius = 40.0;
 
 /// name         built-in name or the mesh file's path
 /// mesh_file    "" for a built-in object
@@ -35,6 +41,7 @@ const std::vector<std::string>& builtin_scan_objects();
 /// lowest point on the platter, scaled to fit within `max_radius` of the axis
 /// and `max_height` above the platter. Throws InvalidInput for an unknown
 /// name that is no file, or a mesh without faces or extent.
-ScanObject scan_object(const std::string& name_or_file, double max_radius = 40.0, double max_height = 80.0);
+ScanObject scan_object(const std::string& name_or_file, double max_radius = kSimulatedObjectRadius,
+                       double max_height = kSimulatedRigHeight);
 
 }  // namespace scanstation::sim

@@ -5,19 +5,35 @@
 
 namespace scanstation::sim {
 
-SimulatedTurntable simulated_turntable(ScanObject object, const drivers::StationDescription& station,
-                                       std::uint64_t seed) {
+TurntableLaserRig station_rig(const drivers::StationDescription& station) {
   if (station.lasers.empty() || station.lasers.size() > 2)
     throw InvalidInput("simulated turntable: the rig has one or two lasers, the station names " +
                        std::to_string(station.lasers.size()));
   // The simulated camera streams the offered size nearest to the requested one.
   const drivers::FrameSize size =
       drivers::nearest_format(SimCameraConfig::default_formats(), station.camera.format).applied.size;
-  const Eigen::MatrixX3d& P = object.on_platter.vertices.positions;
-  const double height = P.col(2).maxCoeff();
+  TurntableLaserRig rig = turntable_laser_rig(kSimulatedRigHeight, kSimulatedPlatterRadius, size.width, size.height);
+  rig.lasers.resize(station.lasers.size());
+  return rig;
+}
+
+acquisition::TurntableGeometry truth_geometry(const TurntableLaserRig& rig) {
+  acquisition::TurntableGeometry geometry;
+  geometry.camera = rig.camera;
+  for (const LineLaser& laser : rig.lasers) geometry.lasers.push_back(laser.plane);
+  geometry.source = "simulator truth";
+  return geometry;
+}
+
+SimulatedTurntable simulated_turntable(ScanObject object, const drivers::StationDescription& station,
+                                       std::uint64_t seed) {
+  const double height = object.on_platter.vertices.positions.col(2).maxCoeff();
+  // A small tolerance: scan_object scales to the height in floating point.
+  if (height > kSimulatedRigHeight * (1 + 1e-9))
+    throw InvalidInput("simulated turntable: '" + object.name + "' stands " + std::to_string(height) +
+                       " high; the rig frames objects up to " + std::to_string(kSimulatedRigHeight));
   SimulatedTurntable sim;
-  sim.rig = turntable_laser_rig(height, kSimulatedPlatterRadius, size.width, size.height);
-  sim.rig.lasers.resize(station.lasers.size());
+  sim.rig = station_rig(station);
   sim.renderer = std::make_shared<const SceneRenderer>(
       turntable_scene(object.on_platter, sim.rig, kSimulatedPlatterRadius));
   sim.frames = scene_frame_source_factory(sim.renderer, sim.rig.camera, station, SensorModel{}, seed);

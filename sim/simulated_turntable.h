@@ -1,9 +1,15 @@
-// A simulated turntable laser station for one object: the rig sized for the
-// object (camera at the station's frame size, one light plane per laser of
-// the station), the scene, and the hook that lets open_station's simulated
-// camera render it in the state the simulated actuators set.
+// A simulated turntable laser station: one fixed rig per station description
+// (camera at the station's frame size, one light plane per laser of the
+// station, framed for objects up to kSimulatedRigHeight on a platter of
+// kSimulatedPlatterRadius) — the same rig whatever the object, so that one
+// calibration of the station (scanstation calibrate --backend sim) applies to
+// every object scanned on it. The object is placed and scaled to fit the rig
+// (sim/scan_objects.h), the scene built, and the hook made that lets
+// open_station's simulated camera render it in the state the simulated
+// actuators set.
 #pragma once
 
+#include "acquisition/turntable_geometry.h"
 #include "drivers/station_description.h"
 #include "sim/devices/scene_frame_source.h"
 #include "sim/scan_objects.h"
@@ -23,7 +29,19 @@ struct SimulatedTurntable {
 
 inline constexpr double kSimulatedPlatterRadius = 60.0;
 
+/// The station's simulated rig: turntable_laser_rig(kSimulatedRigHeight,
+/// kSimulatedPlatterRadius) at the frame size the simulated camera streams for
+/// the station's requested format, one laser per laser of the station.
 /// Throws InvalidInput for a station with no laser or more than two.
+TurntableLaserRig station_rig(const drivers::StationDescription& station);
+
+/// The rig's true camera and light planes (source "simulator truth").
+acquisition::TurntableGeometry truth_geometry(const TurntableLaserRig& rig);
+
+/// The station's rig (station_rig) with `object` on its platter; the object
+/// must fit the rig (scan_object places built-ins and mesh files so).
+/// Throws InvalidInput for a station with no laser or more than two, or an
+/// object taller than the rig frames.
 SimulatedTurntable simulated_turntable(ScanObject object, const drivers::StationDescription& station,
                                        std::uint64_t seed = 1);
 

@@ -115,6 +115,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
   seconds["final_boundary"] = watch.lap();
 
   json report = options.extra;
+  if (const auto warning = acquisition::laser_agreement_warning(result)) report["warnings"].push_back(*warning);
   json outputs = {{"points", (folder / "points.ply").string()}, {"report", (folder / "report.json").string()}};
   json& boundary_report = report["boundary"];
   if (!boundary.error.empty()) {

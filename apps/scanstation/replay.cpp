@@ -40,8 +40,10 @@ class ReplayCommand final : public Command {
     const nlohmann::json report = station::process_session(contents, out, processing);
     context.progress.finish();
     for (const auto& problem : report["problems"]) context.log->warn("{}", problem.get<std::string>());
-    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "replay_speedup", "boundary",
-                            "smoothing", "accuracy", "outputs"})
+    for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
+      context.log->warn("{}", warning);
+    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "replay_speedup",
+                            "laser_agreement", "boundary", "smoothing", "accuracy", "outputs"})
       if (report.contains(key)) context.report[key] = report[key];
     const auto& seconds = report["seconds"];
     std::printf("replayed %d of %zu recorded steps (%d planned), %lld points in %.2f s; the capture took %.1f s\n",

@@ -37,6 +37,14 @@ class ScanCommand final : public Command {
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     cli_->add_option("-o,--output", job_.folder, "Session folder (the results are written into it too)")->required();
+    // Calibration (acquisition/scan_calibration.h): which geometry the scan triangulates with.
+    cli_->add_option("--calibration", job_.calibration,
+                     "Station calibration file (default: the one the station description names; on the simulator "
+                     "without one, or with 'sim-truth', the simulator's true geometry)");
+    cli_->add_option("--calibration-max-age", job_.calibration_max_age,
+                     "Refuse a calibration whose oldest part is older than this (days; 0: any age)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     parameters_.add_to(*cli_);
     cli_->footer("With --progress=json, every step emits a \"step\" event and a \"boundary\" event (points so far, "
                  "boundary triangles, all_on_boundary). Ctrl-C stops after the current step and still writes the "

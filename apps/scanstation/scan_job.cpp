@@ -38,9 +38,8 @@ SessionRecorder create_session(CommandContext& context, const ScanJob& job, cons
   manifest.steps = job.steps;
   manifest.station = acquisition::station_json(job.station);
   manifest.station["sim_seed"] = job.seed;
-  manifest.geometry.camera = simulated.rig.camera;
-  for (const auto& laser : simulated.rig.lasers) manifest.geometry.lasers.push_back(laser.plane);
-  manifest.geometry.source = "simulator truth";
+  manifest.geometry = acquisition::scan_geometry(job.calibration, job.station, sim::truth_geometry(simulated.rig),
+                                                 job.calibration_max_age);
   manifest.parameters = job.parameters;
   manifest.object = {job.object, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
   manifest.software_version = kVersion;
@@ -112,7 +111,7 @@ void print_results(const nlohmann::json& r) {
 void run_scan_job(CommandContext& context, const ScanJob& job) {
   const drivers::StationDescription& description = job.station;
   if (description.camera.backend != "sim")
-    throw InvalidInput("scan: a real camera needs a calibration file, which the scan does not read yet; scan on "
+    throw InvalidInput("scan: the scan drives simulated devices only (real stations are being wired); scan on "
                        "the simulator with --backend sim");
   std::optional<SessionRecorder> recorder;
   if (job.resume) recorder.emplace(resume_session(context, job));
@@ -187,8 +186,10 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
       station::process_session(acquisition::read_session(job.folder), job.folder, processing, &live);
   context.progress.finish();
   process.stop();
-  for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "object", "boundary",
-                          "smoothing", "accuracy", "outputs", "stopped"})
+  for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
+    context.log->warn("{}", warning);
+  for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "object", "laser_agreement",
+                          "boundary", "smoothing", "accuracy", "outputs", "stopped"})
     if (report.contains(key)) context.report[key] = report[key];
   context.report["session"] = job.folder.string();
   const bool complete = report["complete"].get<bool>();

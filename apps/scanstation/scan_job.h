@@ -4,6 +4,7 @@
 // alone.
 #pragma once
 
+#include "acquisition/scan_calibration.h"
 #include "acquisition/session.h"
 #include "command.h"
 #include "drivers/station_description.h"
@@ -19,6 +20,7 @@ namespace scanstation::app {
 /// object          simulated object: built-in name or mesh file
 /// parameters      laser processing parameters (a resumed session keeps its own)
 /// snapshot_every  K > 0: the live boundary as PLY every K steps into folder/snapshots
+/// calibration     see acquisition::scan_geometry
 struct ScanJob {
   drivers::StationDescription station;
   std::string object = "sphere";
@@ -31,6 +33,8 @@ struct ScanJob {
   acquisition::LaserScanParameters parameters;
   int snapshot_every = 0;
   int density = 4;
+  std::string calibration;  ///< file, "sim-truth", or "" (the station's, else the simulator's truth)
+  double calibration_max_age = acquisition::kCalibrationMaxAgeDays;
 };
 
 /// Records (or resumes) the session in job.folder, growing the boundary live

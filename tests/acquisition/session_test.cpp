@@ -50,9 +50,7 @@ struct SimStation {
     SessionManifest m;
     m.steps = steps;
     m.station = station_json(description);
-    m.geometry.camera = simulated.rig.camera;
-    for (const auto& laser : simulated.rig.lasers) m.geometry.lasers.push_back(laser.plane);
-    m.geometry.source = "simulator truth";
+    m.geometry = sim::truth_geometry(simulated.rig);
     m.object = {simulated.object.name, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
     m.software_version = "test";
     return m;
@@ -320,6 +318,44 @@ TEST(Session, ChaliceScanWithinTheAccuracyBudget) {
   const double budget = 5e-4 * diagonal(sim::scan_object("chalice").on_platter.vertices.positions);
   std::printf("chalice session: %ld points, RMS %.4f mm (budget %.4f)\n", static_cast<long>(P.rows()), rms, budget);
   EXPECT_LE(rms, budget);
+}
+
+// Laser agreement (acquisition/laser_agreement.h) at the default 36 steps:
+// the true planes agree; laser 1's plane moved 0.3 mm along its normal (a
+// miscalibrated laser) is flagged as two shifted copies.
+TEST(Session, LaserAgreementFlagsAShiftedPlaneAtTheDefaultSteps) {
+  test::ScratchFolder folder;
+  ASSERT_TRUE(scan(folder / "s", "sphere", 36).complete);
+  const SessionContents contents = read_session(folder / "s");
+  const ScanResult truth = replay_session(contents);
+  ASSERT_TRUE(truth.laser_agreement);
+  const LaserAgreementCheck& agree = *truth.laser_agreement;
+  ReplayOptions shifted;
+  shifted.geometry = contents.manifest.geometry;
+  shifted.geometry->lasers[1].origin += 0.3 * shifted.geometry->lasers[1].normal;
+  const ScanResult wrong = replay_session(contents, shifted);
+  ASSERT_TRUE(wrong.laser_agreement);
+  const LaserAgreementCheck& disagree = *wrong.laser_agreement;
+  std::printf("laser agreement at 36 steps: true planes %.4f (limit %.4f, radius %.2f, %.0f%% compared); plane 0.3 "
+              "off: %.4f\n", agree.agreement.median_distance, agree.limit, agree.radius, 100 * agree.agreement.compared,
+              disagree.agreement.median_distance);
+  EXPECT_TRUE(agree.checked) << agree.reason;
+  EXPECT_TRUE(agree.agree);
+  EXPECT_FALSE(laser_agreement_warning(truth));
+  EXPECT_TRUE(disagree.checked) << disagree.reason;
+  EXPECT_FALSE(disagree.agree);
+  ASSERT_TRUE(laser_agreement_warning(wrong));
+  EXPECT_THAT(*laser_agreement_warning(wrong), testing::HasSubstr("two shifted copies"));
+  EXPECT_THAT(*laser_agreement_warning(wrong), testing::HasSubstr("scanstation calibrate laser"));
+}
+
+// Eight steps put each laser's stripes 45° apart: too far for a local surface
+// fit, so the check says why it was not made instead of a false flag.
+TEST_F(RecordedSphere, FewStepsLeaveTheLaserAgreementUncheckedWithTheReason) {
+  const json agreement = json::parse(bytes(session() / "report.json"))["laser_agreement"];
+  EXPECT_FALSE(agreement["checked"].get<bool>());
+  EXPECT_TRUE(agreement["agree"].get<bool>());
+  EXPECT_THAT(agreement["reason"].get<std::string>(), testing::HasSubstr("at 8 steps per turn"));
 }
 
 TEST(Session, RefusesToOverwriteAndToResumeNothing) {

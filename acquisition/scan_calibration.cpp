@@ -1,0 +1,97 @@
+#include "acquisition/scan_calibration.h"
+
+#include "core/errors.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+namespace scanstation::acquisition {
+
+using nlohmann::json;
+
+long long seconds_since_epoch(const std::string& iso_time, const std::string& field) {
+  std::tm utc{};
+  char zone = 0;
+  int consumed = 0;
+  if (std::sscanf(iso_time.c_str(), "%4d-%2d-%2dT%2d:%2d:%2d%c%n", &utc.tm_year, &utc.tm_mon, &utc.tm_mday,
+                  &utc.tm_hour, &utc.tm_min, &utc.tm_sec, &zone, &consumed) != 7 ||
+      zone != 'Z' || static_cast<std::size_t>(consumed) != iso_time.size())
+    throw InvalidInput(field + ": \"" + iso_time + "\" is not a UTC time like 2026-12-01T17:00:00Z");
+  utc.tm_year -= 1900;
+  utc.tm_mon -= 1;
+  return static_cast<long long>(timegm(&utc));
+}
+
+TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const drivers::StationDescription& station,
+                                      double max_age_days, const std::string& now) {
+  const int laser_count = static_cast<int>(station.lasers.size());
+  check_calibration_matches(calibration, station);
+  check_calibration_complete(calibration, CalibrationNeed::lasers, laser_count);
+  const std::string file = calibration.source.empty() ? "the calibration" : calibration.source.string();
+
+  // The parts used, with their dates: the oldest decides the age.
+  std::vector<std::pair<std::string, std::string>> parts{{"camera.date", calibration.camera->date}};
+  if (calibration.turntable) parts.emplace_back("turntable.date", calibration.turntable->date);
+  json laser_dates = json::array();
+  for (int l = 0; l < laser_count; ++l) {
+    parts.emplace_back("lasers[" + std::to_string(l) + "].date", calibration.laser(l)->date);
+    laser_dates.push_back(calibration.laser(l)->date);
+  }
+  const long long at = seconds_since_epoch(now, "the current time");
+  double age_days = 0;
+  std::string oldest;
+  for (const auto& [field, date] : parts) {
+    const double age = static_cast<double>(at - seconds_since_epoch(date, file + ": " + field)) / 86400.0;
+    if (age >= age_days) {
+      age_days = age;
+      oldest = field;
+    }
+  }
+  if (max_age_days > 0 && age_days > max_age_days) {
+    char text[160];
+    std::snprintf(text, sizeof text, " is stale: its %s is %.1f days old, more than the %.0f days accepted", oldest.c_str(),
+                  age_days, max_age_days);
+    throw InvalidInput(file + text + ": recalibrate that part (`scanstation calibrate " +
+                       oldest.substr(0, oldest.find_first_of(".[")) +
+                       " --force`, with `calibrate laser` after a new camera or turntable), or accept it with "
+                       "--calibration-max-age DAYS (0: any age)");
+  }
+
+  TurntableGeometry geometry;
+  geometry.camera = calibration.camera->camera;
+  for (int l = 0; l < laser_count; ++l) geometry.lasers.push_back(calibration.laser(l)->plane);
+  geometry.source = file;
+  geometry.calibration = {
+      {"file", file},
+      {"fingerprint", calibration.station.hash},
+      {"created", calibration.created},
+      {"updated", calibration.updated},
+      {"dates", {{"camera", calibration.camera->date},
+                 {"turntable", calibration.turntable ? json(calibration.turntable->date) : json(nullptr)},
+                 {"lasers", laser_dates}}},
+      {"age_days", std::round(age_days * 1000) / 1000}};
+  return geometry;
+}
+
+TurntableGeometry scan_geometry(const std::string& choice, const drivers::StationDescription& station,
+                                const std::optional<TurntableGeometry>& simulator_truth, double max_age_days) {
+  const std::string file = choice.empty() ? station.calibration.string() : choice;
+  if (file == kSimulatorTruth || (file.empty() && simulator_truth)) {
+    if (!simulator_truth)
+      throw InvalidInput(std::string("--calibration ") + kSimulatorTruth +
+                         ": only a simulated station has a true geometry; give the station's calibration file");
+    return *simulator_truth;
+  }
+  if (file.empty())
+    throw InvalidInput("scan: the station's devices are real and no calibration is given: name the calibration file "
+                       "with --calibration FILE or `calibration = \"FILE\"` in the station description (make one "
+                       "with `scanstation calibrate camera`, then `turntable`, then `laser`)");
+  if (!std::filesystem::exists(file))
+    throw InvalidInput("calibration file " + file + " does not exist" +
+                       (choice.empty() ? " (named by the station description " + station.source.string() + ")" : "") +
+                       ": make it with `scanstation calibrate camera|turntable|laser -o " + file + "`");
+  return calibrated_geometry(read_station_calibration(file), station, max_age_days, calibration_date());
+}
+
+}  // namespace scanstation::acquisition
