@@ -32,4 +32,10 @@ namespace scanstation {
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, double tension = 1.0 / 3.0);
 
+/// The same into `surface`, replacing what it held and reusing its memory (no
+/// new pages when it held at least as many patches), for repeated smoothing
+/// of one mesh or of meshes of similar size.
+void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N, const MeshEdges& edges,
+               double tension, BezierSurface& surface);
+
 }  // namespace scanstation
