@@ -428,7 +428,6 @@ void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen
   FaceSplit own;
   EdgeSide here[3];
   const EdgeSide* sides[3];
-  std::array<CubicTriangle, 6> patches;
   for (int f = 0; f < faces; ++f) {
     split_face(macro_patch(V, F, N, f, tension), own);
     for (int c = 0; c < 3; ++c) {
@@ -442,8 +441,8 @@ void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen
         ++surface.dependent_edges;
       sides[c] = &here[c];
     }
-    assemble(own, sides, patches.data());
-    surface.patches.insert(surface.patches.end(), patches.begin(), patches.end());
+    surface.patches.resize(surface.patches.size() + 6);
+    assemble(own, sides, &surface.patches[surface.patches.size() - 6]);
     surface.macro.insert(surface.macro.end(), 6, f);
   }
 }
