@@ -20,16 +20,29 @@ namespace scanstation {
 /// the only value for which the conditions (9.10b) at Z are not degenerate,
 /// see docs/design.md).
 /// Step 5, per macro edge: Z, its four neighbours Y and the four centres X
-/// around Z move least (least squares, Eigen) subject to
+/// around Z move least (least squares) subject to
 ///   Z = (Y_a + Y_b)/2 = (Y_f + Y_g)/2   (the star at Z: a common tangent plane),
 ///   Y_f = (X_a + X_b)/2, Y_g likewise  (Equation 9.10a on the edges to O, O'),
 ///   Equation (9.3b, c) on both macro half edges, with linear E, F, G fixed at
 ///   the vertex end by the tangent plane (Equation 9.9a) and at Z to (1, −½, −½).
+/// Solved once per macro edge in closed form (the two (9.3b) rows give Y_a,
+/// Y_b; the rest is a 3×4 system in the centres with a one-dimensional null
+/// space, see docs/design.md), the pseudo-inverse where the constraints are
+/// dependent (counted in dependent_edges).
 /// Steps 6–7: Q at the vertex edges from Equation (9.13a), Q at the midpoint
 /// edges the mean of their neighbours (9.12a), O = (Q0 + Q2 + Q4)/3 — the
 /// domain ratios of the split, so the interior joins C¹.
 /// tension  the Step-2 constant of the macro patches (1/3 in the thesis).
+/// One pass over the macro triangles, each written once, complete; memory
+/// per macro triangle: 1440 bytes of patches and 24 of `macro` kept, 228 more
+/// while building.
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, double tension = 1.0 / 3.0);
+
+/// The same into `surface`, replacing what it held and reusing its memory (no
+/// new pages when it held at least as many patches), for repeated smoothing
+/// of one mesh or of meshes of similar size.
+void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N, const MeshEdges& edges,
+               double tension, BezierSurface& surface);
 
 }  // namespace scanstation
