@@ -39,9 +39,10 @@ struct ReconstructionOptions {
   bool augment = true;
   AugmentationOptions augmentation;
   /// 3D: once every point is on the boundary, flip edges that lower the
-  /// surface area (O'Rourke's flips, §4.3.2); nullopt: keep constriction's
+  /// surface area (O'Rourke's flips, §4.3.2), then towards a Delaunay
+  /// surface where it is nearly flat; nullopt: keep constriction's
   /// triangles as they are.
-  std::optional<FlipCriterion> flips = FlipCriterion::area;
+  std::optional<FlipCriterion> flips = FlipCriterion::area_then_delaunay;
 };
 
 struct BoundaryStatistics {
