@@ -4,6 +4,8 @@
 // triangles meet the surface anywhere but in shared vertices and edges.
 #pragma once
 
+#include "reconstruct/u64_map.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <Eigen/Core>
@@ -78,53 +80,27 @@ class BoxGrid {
     Eigen::AlignedBox3d box;
     int id;
   };
-  // The occupied cells of one level: open addressing from a cell key to its
-  // ids. Queries probe many cells, most of them empty, so the lookup is the
-  // grid's inner loop (std::unordered_map's modulo and node chasing cost
-  // about a sixth of a whole reconstruction on real meshes).
+  // The occupied cells of one level, by key. Queries probe many cells, most
+  // of them empty, so the lookup is the grid's inner loop
+  // (std::unordered_map's modulo and node chasing cost about a sixth of a
+  // whole reconstruction on real meshes).
   class Cells {
    public:
     bool empty() const { return lists_.empty(); }
     std::size_t size() const { return lists_.size(); }
     const std::vector<std::vector<Entry>>& lists() const { return lists_; }
     const std::vector<Entry>* find(std::uint64_t k) const {
-      if (lists_.empty()) return nullptr;
-      const std::size_t s = slot(k);
-      return keys_[s] == kEmpty ? nullptr : &lists_[index_[s]];
+      const std::uint32_t* i = index_.find(k);
+      return i ? &lists_[*i] : nullptr;
     }
     std::vector<Entry>& operator[](std::uint64_t k) {
-      if (2 * (lists_.size() + 1) > keys_.size()) rehash(std::max<std::size_t>(64, 2 * keys_.size()));
-      const std::size_t s = slot(k);
-      if (keys_[s] == kEmpty) {
-        keys_[s] = k;
-        index_[s] = static_cast<std::uint32_t>(lists_.size());
-        lists_.emplace_back();
-      }
-      return lists_[index_[s]];
+      if (const std::uint32_t* i = index_.find(k)) return lists_[*i];
+      index_[k] = static_cast<std::uint32_t>(lists_.size());
+      return lists_.emplace_back();
     }
 
    private:
-    static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // no key has bit 63
-    std::size_t slot(std::uint64_t k) const {
-      const std::size_t mask = keys_.size() - 1;
-      std::size_t s = static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ULL) >> 20) & mask;
-      while (keys_[s] != kEmpty && keys_[s] != k) s = (s + 1) & mask;
-      return s;
-    }
-    void rehash(std::size_t capacity) {
-      const std::vector<std::uint64_t> keys = std::move(keys_);
-      const std::vector<std::uint32_t> index = std::move(index_);
-      keys_.assign(capacity, kEmpty);
-      index_.assign(capacity, 0);
-      for (std::size_t i = 0; i < keys.size(); ++i)
-        if (keys[i] != kEmpty) {
-          const std::size_t s = slot(keys[i]);
-          keys_[s] = keys[i];
-          index_[s] = index[i];
-        }
-    }
-    std::vector<std::uint64_t> keys_;
-    std::vector<std::uint32_t> index_;
+    U64Map<std::uint32_t> index_;  // list of each cell key
     std::vector<std::vector<Entry>> lists_;
   };
   double size(int l) const { return cell_ * static_cast<double>(std::uint64_t{1} << l); }
