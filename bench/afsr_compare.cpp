@@ -2,7 +2,8 @@
 // the closest existing peer, on the vertices of real closed genus-0 meshes
 // (their original triangles are the known answer).
 //
-//   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton] MESH.off ...
+//   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton]
+//                            [--flips area|area-then-delaunay|off] MESH.off ...
 //
 // --method picks our side: by default what `scanstation reconstruct` does in
 // 3D (area change and γ-indicator), or the thesis' γ-indicator, or one of the
@@ -82,6 +83,10 @@ int main(int argc, char** argv) {
   for (int a = 1; a < argc; ++a) {
     if (std::string(argv[a]) == "--noise" && a + 1 < argc) {
       noise = std::stod(argv[++a]);
+    } else if (std::string(argv[a]) == "--flips" && a + 1 < argc) {
+      const std::string flips = argv[++a];
+      if (flips == "area-then-delaunay") options.flips = FlipCriterion::area_then_delaunay;
+      if (flips == "off") options.flips.reset();
     } else if (std::string(argv[a]) == "--method" && a + 1 < argc) {
       const std::string method = argv[++a];
       if (method == "min-area-change") options.constriction.criterion = ConstrictionCriterion::minimal_area_change;

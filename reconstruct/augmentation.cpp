@@ -25,22 +25,36 @@ struct Carve {
   }
 };
 
+// What a popped candidate gets: carved now, tried again at the next (lower)
+// level, or dropped for good (a point lies in its tetrahedron: points never
+// move, so no level changes that).
+enum class Verdict { carve, retry, drop };
+
 // The adaptive levels of §5.4, shared by 2D and 3D: at each c0 from
 // `highest` down to `lowest`, every candidate carve of the points still
 // inside, smallest γ-indicator first, checked in full when it is popped.
+// What failed at one level waits for the next instead of being proposed
+// again from scratch: only the faces made since a point's last proposal are
+// new to it (start_level).
 template <typename Carver>
 Augmentation run_levels(Carver& carver, std::priority_queue<Carve>& heap, std::vector<int>& interior,
                         const AugmentationOptions& options) {
   Augmentation result;
+  std::vector<Carve> waiting;
   for (double c0 = options.highest; c0 >= options.lowest - 1e-9 && !interior.empty(); c0 -= options.step) {
     c0 = std::max(c0, options.lowest);
     heap = {};
-    carver.start_level();
-    for (const int v : interior) carver.propose(v);
+    for (const Carve& c : waiting)
+      if (carver.still_there(c)) heap.push(c);
+    waiting.clear();
+    carver.start_level(interior);
     while (!heap.empty()) {
       const Carve top = heap.top();
       heap.pop();
-      if (!carver.still_there(top) || !carver.allowed(top.face, top.vertex, c0)) continue;
+      if (!carver.still_there(top)) continue;
+      const Verdict verdict = carver.verdict(top.face, top.vertex, c0);
+      if (verdict == Verdict::retry) waiting.push_back(top);
+      if (verdict != Verdict::carve) continue;
       carver.carve(top.face, top.vertex);
       ++result.carved;
       carver.propose_around(top.vertex);
@@ -70,7 +84,9 @@ class Augmenter {
   }
 
   // The hooks run_levels drives.
-  void start_level() { std::fill(proposed_below_.begin(), proposed_below_.end(), 0); }
+  void start_level(const std::vector<int>& interior) {
+    for (const int v : interior) propose(v);
+  }
   bool on_boundary(int v) const { return surface_.on_boundary(v); }
   bool still_there(const Carve& c) const { return surface_.alive(c.face) && !surface_.on_boundary(c.vertex); }
   void propose_around(int v) {
@@ -97,8 +113,9 @@ class Augmenter {
   }
 
   // Face ids are never reused and a candidate's key depends only on its face
-  // and point, so a point re-proposed after a carve nearby only needs the
-  // faces made since its last proposal at this level.
+  // and point, so a point proposed again (after a carve nearby, or at the
+  // next level) only needs the faces made since its last proposal: the
+  // older ones were carved, dropped, or wait in run_levels.
   void propose(int v) {
     const int seen = proposed_below_[static_cast<std::size_t>(v)];
     proposed_below_[static_cast<std::size_t>(v)] = static_cast<int>(surface_.face_slots());
@@ -167,17 +184,18 @@ class Augmenter {
     return empty;
   }
 
-  bool allowed(int f, int v, double c0) const {
+  Verdict verdict(int f, int v, double c0) const {
     const Triangle& t = surface_.face(f);
     Triangle sorted = t;
     std::sort(sorted.begin(), sorted.end());
-    if (std::binary_search(keep_.begin(), keep_.end(), sorted)) return false;  // §5.7
+    if (std::binary_search(keep_.begin(), keep_.end(), sorted)) return Verdict::drop;  // §5.7
     const std::vector<Triangle> fresh{{t[0], t[1], v}, {t[1], t[2], v}, {t[2], t[0], v}};
     for (const Triangle& n : fresh)
-      if (!in_gamma(n[0], n[1], n[2], c0)) return false;
+      if (!in_gamma(n[0], n[1], n[2], c0)) return Verdict::retry;
     // No point may fall outside, and the new triangles may not cross the
     // surface: the "simplices that cross a removed one" of §5.4.
-    return !surface_.point_in_tetrahedron(t[0], t[1], t[2], v) && !surface_.meets_surface(fresh, {f});
+    if (surface_.point_in_tetrahedron(t[0], t[1], t[2], v)) return Verdict::drop;
+    return surface_.meets_surface(fresh, {f}) ? Verdict::retry : Verdict::carve;
   }
 
   void carve(int f, int v) {
@@ -205,7 +223,7 @@ class Augmenter {
   std::priority_queue<Carve> heap_;
   std::vector<Triangle> keep_;  // sorted triples
   mutable std::unordered_map<Triangle, LensThreshold, TriangleHash> thresholds_;
-  std::vector<int> proposed_below_;  // per point: faces below this id are in the heap already
+  std::vector<int> proposed_below_;  // per point: faces below this id were proposed already
 };
 
 }  // namespace
@@ -250,7 +268,11 @@ class Augmenter2 {
   }
 
   // The hooks run_levels drives; an edge is named by its start vertex.
-  void start_level() {}
+  // An edge keeps its name (start vertex) when its end changes, so 2D
+  // proposes every point afresh at each level and never defers.
+  void start_level(const std::vector<int>& interior) {
+    for (const int v : interior) propose(v);
+  }
   bool on_boundary(int v) const { return next_[static_cast<std::size_t>(v)] >= 0; }
   bool still_there(const Carve& c) const { return !on_boundary(c.vertex) && on_boundary(c.face); }
   void propose_around(int v) {
@@ -346,6 +368,8 @@ class Augmenter2 {
     if (x == y) return true;
     return CGAL::orientation(P(shared), P(x), P(y)) == CGAL::COLLINEAR && CGAL::angle(P(x), P(shared), P(y)) == CGAL::ACUTE;
   }
+
+  Verdict verdict(int a, int v, double c0) const { return allowed(a, v, c0) ? Verdict::carve : Verdict::drop; }
 
   bool allowed(int a, int v, double c0) const {
     const int b = next_[static_cast<std::size_t>(a)];

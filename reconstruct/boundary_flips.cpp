@@ -3,6 +3,7 @@
 #include "reconstruct/boundary_surface.h"
 
 #include <algorithm>
+#include <cmath>
 #include <queue>
 #include <tuple>
 #include <utility>
@@ -12,10 +13,6 @@ namespace scanstation {
 namespace {
 
 using Triangle = BoundarySurface::Triangle;
-
-double area(const BoundarySurface& s, const Triangle& t) {
-  return 0.5 * (s.point(t[1]) - s.point(t[0])).cross(s.point(t[2]) - s.point(t[0])).norm();
-}
 
 // The face holding the directed edge a → b, and its third vertex.
 std::pair<int, int> face_with(const BoundarySurface& s, int a, int b) {
@@ -28,16 +25,46 @@ std::pair<int, int> face_with(const BoundarySurface& s, int a, int b) {
   return {-1, -1};
 }
 
-// Edges (a < b) whose flip would lower the area enough, found from the face
-// list alone, so that a surface with none costs two linear passes and no
-// spatial index. The half-edges are bucketed by their lower vertex (counting
-// sort: a million-face surface has six million half-edges, too many for a
+// The measures both criteria read off an edge (a, b) between the faces
+// (a, b, c) and (b, a, d).
+double area(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
+  return 0.5 * (q - p).cross(r - p).norm();
+}
+double angle(const Eigen::Vector3d& apex, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d x = u - apex, y = v - apex;
+  return std::acos(std::clamp(x.dot(y) / std::sqrt(x.squaredNorm() * y.squaredNorm()), -1.0, 1.0));
+}
+
+// How much flipping (a, b) to (c, d) is worth under a criterion (> 0: flip).
+// Area: the relative drop of the two triangles' area, when at least
+// min_gain. Delaunay: by how much the angles opposite (a, b) exceed π, when
+// the quad is nearly flat (its normals within kFlatDegrees) and the new edge
+// is locally Delaunay itself (so no flip undoes another).
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFlatDegrees = 45.0;
+double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                 const Eigen::Vector3d& d, double min_gain) {
+  if (criterion == FlipCriterion::area) {
+    const double before = area(a, b, c) + area(b, a, d), after = area(a, d, c) + area(d, b, c);
+    return before > 0 && after < before * (1.0 - min_gain) ? 1.0 - after / before : 0.0;
+  }
+  const double before = angle(c, a, b) + angle(d, b, a);
+  if (!(before > kPi + 1e-9) || !(angle(a, c, d) + angle(b, d, c) < kPi)) return 0.0;
+  const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
+  if (n1.dot(n2) < std::cos(kFlatDegrees * kPi / 180.0) * n1.norm() * n2.norm()) return 0.0;
+  return before - kPi;
+}
+
+// Edges (a < b) worth a flip, found from the face list alone, so that a
+// surface with none costs two linear passes and no spatial index. The
+// half-edges are bucketed by their lower vertex (counting sort: a
+// million-face surface has six million half-edges, too many for a
 // comparison sort to be cheap), then paired within each small bucket.
-std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, double min_gain) {
+std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F,
+                                                 FlipCriterion criterion, double min_gain) {
   struct Half {
     int hi, opposite;
     bool forward;
-    double area;
   };
   std::vector<std::size_t> start(static_cast<std::size_t>(P.rows()) + 1, 0);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
@@ -45,14 +72,11 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
   for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
   std::vector<Half> halves(start.back());
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d p0 = P.row(F(f, 0)), p1 = P.row(F(f, 1)), p2 = P.row(F(f, 2));
-    const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int u = F(f, k), v = F(f, (k + 1) % 3);
-      halves[fill[static_cast<std::size_t>(std::min(u, v))]++] = {std::max(u, v), F(f, (k + 2) % 3), u < v, a};
+      halves[fill[static_cast<std::size_t>(std::min(u, v))]++] = {std::max(u, v), F(f, (k + 2) % 3), u < v};
     }
-  }
   std::vector<std::pair<int, int>> out;
   for (std::size_t lo = 0; lo + 1 < start.size(); ++lo) {
     const auto first = halves.begin() + static_cast<std::ptrdiff_t>(start[lo]);
@@ -61,39 +85,24 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
     for (auto x = first; x != last && x + 1 != last; ++x) {
       const auto y = x + 1;
       if (x->hi != y->hi) continue;
-      const Eigen::Vector3d a = P.row(static_cast<Eigen::Index>(lo)), b = P.row(x->hi), c = P.row(x->opposite),
-                            d = P.row(y->opposite);
-      // The two new triangles {a, c, d} and {b, c, d}, whichever face c is on.
-      const double after = 0.5 * ((d - a).cross(c - a).norm() + (b - d).cross(c - d).norm());
-      if (after < (x->area + y->area) * (1.0 - min_gain)) out.emplace_back(static_cast<int>(lo), x->hi);
+      // y runs lo → hi (forward sorts last): its face is (lo, hi, y->opposite).
+      if (flip_gain(criterion, P.row(static_cast<Eigen::Index>(lo)).transpose(), P.row(x->hi).transpose(),
+                    P.row(y->opposite).transpose(), P.row(x->opposite).transpose(), min_gain) > 0)
+        out.emplace_back(static_cast<int>(lo), x->hi);
     }
   }
   return out;
 }
 
-}  // namespace
-
-std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
-                          const Eigen::MatrixXi& keep, double min_gain) {
-  (void)criterion;
-  std::vector<std::pair<int, int>> first = candidate_edges(points, boundary, min_gain);
-  if (first.empty()) return 0;
-  BoundarySurface surface(points, boundary);
-  std::vector<Triangle> fixed;
-  for (Eigen::Index k = 0; k < keep.rows(); ++k) {
-    Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
-    std::sort(t.begin(), t.end());
-    fixed.push_back(t);
-  }
-  std::sort(fixed.begin(), fixed.end());
+// Flips by one criterion, largest gain first (area: caps over concavities go
+// before the small corrections around them), each under the exact tests.
+std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int, int>>& first, FlipCriterion criterion,
+                      const std::vector<Triangle>& fixed, double min_gain) {
   const auto is_fixed = [&](int f) {
     Triangle t = surface.face(f);
     std::sort(t.begin(), t.end());
     return std::binary_search(fixed.begin(), fixed.end(), t);
   };
-
-  // Largest relative area drop first: caps over concavities go before the
-  // small corrections around them.
   struct Candidate {
     double gain;
     int a, b;
@@ -104,26 +113,23 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     const auto [f1, c] = face_with(surface, a, b);
     const auto [f2, d] = face_with(surface, b, a);
     if (f1 < 0 || f2 < 0 || c == d) return 0.0;
-    const double before = area(surface, surface.face(f1)) + area(surface, surface.face(f2));
-    const double after = area(surface, {a, d, c}) + area(surface, {d, b, c});
-    return before > 0 ? 1.0 - after / before : 0.0;
+    return flip_gain(criterion, surface.point(a), surface.point(b), surface.point(c), surface.point(d), min_gain);
   };
   for (const auto& [a, b] : first) edges.push({gain_of(a, b), a, b});
-  std::size_t flips = 0;
-  while (!edges.empty()) {
+  // Area flips always lower the area; Delaunay flips on a curved surface
+  // have no such potential, so a budget guarantees the end.
+  std::size_t flips = 0, budget = 4 * surface.face_slots();
+  while (!edges.empty() && budget-- > 0) {
     const Candidate top = edges.top();
     edges.pop();
     const int a = top.a, b = top.b;
     const auto [f1, c] = face_with(surface, a, b);
     const auto [f2, d] = face_with(surface, b, a);
     if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
-    const Triangle g1{a, d, c}, g2{d, b, c};
-    // FlipCriterion::area, the only criterion so far.
-    const double before = area(surface, surface.face(f1)) + area(surface, surface.face(f2));
-    const double after = area(surface, g1) + area(surface, g2);
-    if (!(after < before * (1.0 - min_gain))) continue;
+    if (!(gain_of(a, b) > 0)) continue;
     if (CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), surface.exact(d)) == CGAL::COPLANAR)
       continue;
+    const Triangle g1{a, d, c}, g2{d, b, c};
     if (surface.point_in_tetrahedron(a, b, c, d) || surface.meets_surface({g1, g2}, {f1, f2})) continue;
     surface.remove_face(f1);
     surface.remove_face(f2);
@@ -132,8 +138,32 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     ++flips;
     for (const auto& [u, v] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) {
       const double g = gain_of(std::min(u, v), std::max(u, v));
-      if (g > min_gain) edges.push({g, std::min(u, v), std::max(u, v)});
+      if (g > 0) edges.push({g, std::min(u, v), std::max(u, v)});
     }
+  }
+  return flips;
+}
+
+}  // namespace
+
+std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
+                          const Eigen::MatrixXi& keep, double min_gain) {
+  const bool delaunay = criterion == FlipCriterion::area_then_delaunay;
+  const std::vector<std::pair<int, int>> by_area = candidate_edges(points, boundary, FlipCriterion::area, min_gain);
+  if (by_area.empty() && (!delaunay || candidate_edges(points, boundary, criterion, min_gain).empty())) return 0;
+  BoundarySurface surface(points, boundary);
+  std::vector<Triangle> fixed;
+  for (Eigen::Index k = 0; k < keep.rows(); ++k) {
+    Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
+    std::sort(t.begin(), t.end());
+    fixed.push_back(t);
+  }
+  std::sort(fixed.begin(), fixed.end());
+  std::size_t flips = flip_pass(surface, by_area, FlipCriterion::area, fixed, min_gain);
+  if (delaunay) {
+    // The Delaunay candidates of the surface the area flips left.
+    const Eigen::MatrixX3i after = surface.boundary();
+    flips += flip_pass(surface, candidate_edges(points, after, criterion, min_gain), criterion, fixed, min_gain);
   }
   boundary = surface.boundary();
   return flips;

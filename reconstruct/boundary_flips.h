@@ -11,6 +11,12 @@ namespace scanstation {
 /// What a flip should lower.
 enum class FlipCriterion {
   area,  ///< the area of the two triangles: O'Rourke's minimal-area flips (thesis §4.3.2)
+  /// area flips, then Delaunay flips where the surface is nearly flat: an
+  /// edge whose two opposite angles sum beyond π, between faces whose
+  /// normals are within 45°, becomes the other diagonal when that one is
+  /// locally Delaunay (real meshes are: 82–100% of the edges of CGAL's 26
+  /// closed genus-0 meshes)
+  area_then_delaunay,
 };
 
 /// points    #P by 3 positions
@@ -22,7 +28,7 @@ enum class FlipCriterion {
 ///           dents are not the surface; 1e-3 keeps random samples of an
 ///           ellipsoid untouched while caps over concavities still go
 /// An edge (a, b) between (a, b, c) and (b, a, d) becomes (c, d) when that
-/// lowers the criterion by min_gain, (c, d) is not already an edge, the tetrahedron
+/// lowers the criterion (area: by min_gain), (c, d) is not already an edge, the tetrahedron
 /// (a, b, c, d) holds no other point, and the new triangles meet the surface
 /// only in shared vertices and edges (exact tests). Returns the flips made.
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,

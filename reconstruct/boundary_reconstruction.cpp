@@ -124,17 +124,31 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
   s.boundary_vertices = dt.points.rows() - static_cast<Eigen::Index>(s.interior_vertices.size());
 }
 
-// Delaunay neighbours of every point.
+// Delaunay neighbours of every point, in no particular order. Linear: the
+// cells around each point (counting sort), then their vertices, each once
+// (a per-point stamp instead of sorting the ~7 copies of every neighbour).
 template <int D>
 std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
-  std::vector<std::vector<int>> out(static_cast<std::size_t>(dt.points.rows()));
+  const auto n = static_cast<std::size_t>(dt.points.rows());
+  std::vector<std::size_t> start(n + 1, 0);
   for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-    for (int i = 0; i <= D; ++i)
-      for (int j = 0; j <= D; ++j)
-        if (i != j) out[static_cast<std::size_t>(dt.cells(c, i))].push_back(dt.cells(c, j));
-  for (auto& n : out) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
+    for (int i = 0; i <= D; ++i) ++start[static_cast<std::size_t>(dt.cells(c, i)) + 1];
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<int> around(start[n]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i <= D; ++i) around[fill[static_cast<std::size_t>(dt.cells(c, i))]++] = static_cast<int>(c);
+  std::vector<std::vector<int>> out(n);
+  std::vector<int> seen(n, -1);
+  for (std::size_t v = 0; v < n; ++v) {
+    seen[v] = static_cast<int>(v);
+    for (std::size_t k = start[v]; k < start[v + 1]; ++k)
+      for (int i = 0; i <= D; ++i) {
+        const int u = dt.cells(around[k], i);
+        if (seen[static_cast<std::size_t>(u)] == static_cast<int>(v)) continue;
+        seen[static_cast<std::size_t>(u)] = static_cast<int>(v);
+        out[v].push_back(u);
+      }
   }
   return out;
 }

@@ -19,16 +19,45 @@ double cell_size(const Eigen::MatrixX3d& P) {
 }
 }  // namespace
 
+PointTree::PointTree(const Eigen::MatrixX3d& P) {
+  order_.resize(static_cast<std::size_t>(P.rows()));
+  for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
+  position_.resize(order_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) position_[i] = P.row(static_cast<Eigen::Index>(i)).transpose();
+  // A balanced split at the middle index needs fewer than 4n/kLeaf nodes.
+  nodes_.resize(std::max<std::size_t>(1, 4 * order_.size() / kLeaf + 4));
+  if (!order_.empty()) build(0, 0, static_cast<int>(order_.size()));
+  std::vector<Eigen::Vector3d> sorted(order_.size());
+  for (std::size_t k = 0; k < order_.size(); ++k) sorted[k] = P.row(order_[k]).transpose();
+  position_ = std::move(sorted);
+}
+
+void PointTree::build(int node, int begin, int end) {
+  Node& n = nodes_[static_cast<std::size_t>(node)];
+  n.begin = begin;
+  n.end = end;
+  n.box.setEmpty();
+  for (int k = begin; k < end; ++k) n.box.extend(position_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])]);
+  if (end - begin <= kLeaf) return;
+  int axis = 0;
+  n.box.sizes().maxCoeff(&axis);
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
+    return position_[static_cast<std::size_t>(a)][axis] < position_[static_cast<std::size_t>(b)][axis];
+  });
+  build(2 * node + 1, begin, mid);
+  build(2 * node + 2, mid, end);
+}
+
 BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary)
     : P_(P),
-      points_(bounds(P), cell_size(P)),
+      points_(P),
       faces_grid_(bounds(P), cell_size(P)),
       faces_at_(static_cast<std::size_t>(P.rows())),
       on_boundary_(static_cast<std::size_t>(P.rows()), 0) {
   cgal_.reserve(static_cast<std::size_t>(P.rows()));
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     cgal_.emplace_back(P(i, 0), P(i, 1), P(i, 2));
-    points_.insert(static_cast<int>(i), Eigen::AlignedBox3d(point(static_cast<int>(i)), point(static_cast<int>(i))));
   }
   for (Eigen::Index f = 0; f < boundary.rows(); ++f) add_face({boundary(f, 0), boundary(f, 1), boundary(f, 2)});
 }
@@ -114,7 +143,6 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
   return !faces_grid_.visit(region, [&](int g) {
     if (!alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return true;
     const Eigen::AlignedBox3d& other_box = face_boxes_[static_cast<std::size_t>(g)];
-    if (!region.intersects(other_box)) return true;
     for (std::size_t k = 0; k < fresh.size(); ++k)
       if (boxes[k].intersects(other_box) && improper(fresh[k], face(g))) return false;
     return true;

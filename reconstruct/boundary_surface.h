@@ -4,6 +4,8 @@
 // triangles meet the surface anywhere but in shared vertices and edges.
 #pragma once
 
+#include "reconstruct/u64_map.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <Eigen/Core>
@@ -14,7 +16,6 @@
 #include <cstdint>
 #include <initializer_list>
 #include <type_traits>
-#include <unordered_map>
 #include <vector>
 
 namespace scanstation {
@@ -22,29 +23,31 @@ namespace scanstation {
 // A loose multi-level grid over axis-aligned boxes, for "which points /
 // triangles are near this region": each box lives on the finest level where
 // it spans at most two cells per axis, so long triangles cost no more than
-// small ones. Ids may be reported more than once.
+// small ones. Each cell keeps its boxes next to the ids, so a visit rejects
+// the boxes that miss the region without touching the caller's data.
 class BoxGrid {
  public:
   BoxGrid(const Eigen::AlignedBox3d& bounds, double cell) : origin_(bounds.min()), cell_(cell) {}
 
   void insert(int id, const Eigen::AlignedBox3d& box) {
     const int l = level_of(box);
-    level(l)[key(index(l, box.min()))].push_back(id);
+    level(l)[key(index(l, box.min()))].push_back({box, id});
   }
   void erase(int id, const Eigen::AlignedBox3d& box) {
     const int l = level_of(box);
     auto& v = level(l)[key(index(l, box.min()))];
-    v.erase(std::remove(v.begin(), v.end(), id), v.end());
+    v.erase(std::remove_if(v.begin(), v.end(), [id](const Entry& e) { return e.id == id; }), v.end());
   }
-  /// Calls f(id) for (at least) every id whose box may meet `region`. When f
-  /// returns bool, false stops the visit; visit returns false then.
+  /// Calls f(id) for every id whose box meets `region`. When f returns bool,
+  /// false stops the visit; visit returns false then.
   template <typename F>
   bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
-    const auto call = [&](int id) {
+    const auto call = [&](const Entry& e) {
+      if (!region.intersects(e.box)) return true;
       if constexpr (std::is_same_v<std::invoke_result_t<F&, int>, bool>) {
-        return f(id);
+        return static_cast<bool>(f(e.id));
       } else {
-        f(id);
+        f(e.id);
         return true;
       }
     };
@@ -56,14 +59,14 @@ class BoxGrid {
       Eigen::AlignedBox3d grown = region;
       grown.min().array() -= size(l);
       if (span(l, grown) > static_cast<double>(cells.size())) {
-        for (const auto& [key, ids] : cells)
-          for (const int id : ids)
-            if (!call(id)) return false;
+        for (const auto& entries : cells.lists())
+          for (const Entry& e : entries)
+            if (!call(e)) return false;
       } else {
         const bool completed = for_cells(l, grown, [&](std::uint64_t k) {
-          if (const auto it = cells.find(k); it != cells.end())
-            for (const int id : it->second)
-              if (!call(id)) return false;
+          if (const std::vector<Entry>* entries = cells.find(k))
+            for (const Entry& e : *entries)
+              if (!call(e)) return false;
           return true;
         });
         if (!completed) return false;
@@ -73,7 +76,33 @@ class BoxGrid {
   }
 
  private:
-  using Cells = std::unordered_map<std::uint64_t, std::vector<int>>;
+  struct Entry {
+    Eigen::AlignedBox3d box;
+    int id;
+  };
+  // The occupied cells of one level, by key. Queries probe many cells, most
+  // of them empty, so the lookup is the grid's inner loop
+  // (std::unordered_map's modulo and node chasing cost about a sixth of a
+  // whole reconstruction on real meshes).
+  class Cells {
+   public:
+    bool empty() const { return lists_.empty(); }
+    std::size_t size() const { return lists_.size(); }
+    const std::vector<std::vector<Entry>>& lists() const { return lists_; }
+    const std::vector<Entry>* find(std::uint64_t k) const {
+      const std::uint32_t* i = index_.find(k);
+      return i ? &lists_[*i] : nullptr;
+    }
+    std::vector<Entry>& operator[](std::uint64_t k) {
+      if (const std::uint32_t* i = index_.find(k)) return lists_[*i];
+      index_[k] = static_cast<std::uint32_t>(lists_.size());
+      return lists_.emplace_back();
+    }
+
+   private:
+    U64Map<std::uint32_t> index_;  // list of each cell key
+    std::vector<std::vector<Entry>> lists_;
+  };
   double size(int l) const { return cell_ * static_cast<double>(std::uint64_t{1} << l); }
   Cells& level(int l) {
     if (static_cast<int>(levels_.size()) <= l) levels_.resize(static_cast<std::size_t>(l) + 1);
@@ -107,6 +136,50 @@ class BoxGrid {
   Eigen::Vector3d origin_;
   double cell_;
   std::vector<Cells> levels_;
+};
+
+// A static k-d tree over points, for "which points lie in this box": the
+// points never move while a surface is edited, and on non-uniform samplings
+// (dense scans next to wide gaps) a query box of a long triangle or a wide
+// circumball spans thousands of grid cells, most of them empty, where the
+// tree visits only the few nodes the box meets.
+class PointTree {
+ public:
+  explicit PointTree(const Eigen::MatrixX3d& P);
+  /// Calls f(id) for every point in the closed `region`; f returns false to
+  /// stop early, and visit returns false then.
+  template <typename F>
+  bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
+    if (order_.empty()) return true;
+    int stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const int node = stack[--top];
+      const Node& n = nodes_[static_cast<std::size_t>(node)];
+      if (!region.intersects(n.box)) continue;
+      if (n.end - n.begin <= kLeaf) {
+        for (int k = n.begin; k < n.end; ++k)
+          if (region.contains(position_[static_cast<std::size_t>(k)]) && !f(order_[static_cast<std::size_t>(k)]))
+            return false;
+        continue;
+      }
+      stack[top++] = 2 * node + 2;
+      stack[top++] = 2 * node + 1;
+    }
+    return true;
+  }
+
+ private:
+  static constexpr int kLeaf = 8;
+  struct Node {
+    Eigen::AlignedBox3d box;
+    int begin = 0, end = 0;
+  };
+  void build(int node, int begin, int end);
+  std::vector<int> order_;                  // point ids, grouped by leaf
+  std::vector<Eigen::Vector3d> position_;   // their positions, same order
+  std::vector<Node> nodes_;                 // implicit binary tree: children 2i+1, 2i+2
 };
 
 /// faces are counter-clockwise seen from outside; ids stay valid (a removed
@@ -154,7 +227,7 @@ class BoundarySurface {
  private:
   const Eigen::MatrixX3d& P_;
   std::vector<Kernel::Point_3> cgal_;
-  BoxGrid points_;
+  PointTree points_;
   BoxGrid faces_grid_;
   std::vector<Triangle> faces_;
   std::vector<Eigen::AlignedBox3d> face_boxes_;

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "reconstruct/gamma_indicator.h"
 #include "reconstruct/quaternary_heap.h"
+#include "reconstruct/u64_map.h"
 
 #include <Eigen/Geometry>
 
@@ -22,60 +23,25 @@ constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 // How many boundary triangles use each undirected edge, for the 3D
 // removability test "the opposite edge is not already in the boundary".
-// Open addressing over 64-bit keys; counts drop to zero but keys stay, since
-// the same edge may come back.
+// Counts drop to zero but keys stay, since the same edge may come back.
 class EdgeCounter {
  public:
-  explicit EdgeCounter(std::size_t expected) {
-    std::size_t capacity = 16;
-    while (capacity < 2 * expected) capacity *= 2;
-    keys_.assign(capacity, kEmpty);
-    counts_.assign(capacity, 0);
-  }
+  explicit EdgeCounter(std::size_t expected) : counts_(expected) {}
   void add(int a, int b, int delta) {
-    std::size_t slot = find(key(a, b));
-    if (keys_[slot] == kEmpty) {
-      if (2 * (used_ + 1) > keys_.size()) {
-        grow();
-        slot = find(key(a, b));
-      }
-      keys_[slot] = key(a, b);
-      ++used_;
-    }
-    counts_[slot] = static_cast<std::uint8_t>(counts_[slot] + delta);
+    std::uint8_t& count = counts_[key(a, b)];
+    count = static_cast<std::uint8_t>(count + delta);
   }
   bool contains(int a, int b) const {
-    const std::size_t slot = find(key(a, b));
-    return keys_[slot] != kEmpty && counts_[slot] > 0;
+    const std::uint8_t* count = counts_.find(key(a, b));
+    return count && *count > 0;
   }
 
  private:
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
   static std::uint64_t key(int a, int b) {
     if (a > b) std::swap(a, b);
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
   }
-  std::size_t find(std::uint64_t k) const {
-    const std::size_t mask = keys_.size() - 1;
-    std::size_t slot = static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ULL) >> 17) & mask;
-    while (keys_[slot] != kEmpty && keys_[slot] != k) slot = (slot + 1) & mask;
-    return slot;
-  }
-  void grow() {
-    std::vector<std::uint64_t> keys = std::move(keys_);
-    std::vector<std::uint8_t> counts = std::move(counts_);
-    keys_.assign(keys.size() * 2, kEmpty);
-    counts_.assign(keys.size() * 2, 0);
-    for (std::size_t i = 0; i < keys.size(); ++i)
-      if (keys[i] != kEmpty) {
-        const std::size_t slot = find(keys[i]);
-        keys_[slot] = keys[i];
-        counts_[slot] = counts[i];
-      }
-  }
-  std::vector<std::uint64_t> keys_;
-  std::vector<std::uint8_t> counts_;
-  std::size_t used_ = 0;
+  U64Map<std::uint8_t> counts_;
 };
 
 // The γ-indicator's weight in ConstrictionCriterion::area_change_and_gamma,

@@ -50,8 +50,10 @@ class ReconstructCommand final : public Command {
                      "boundary), off, or a fixed c0 in [-1, 0)")
         ->capture_default_str();
     cli_->add_option("--flips", flips_,
-                     "3D, after constriction: area (flip edges while the surface area drops, §4.3.2) or off")
-        ->check(CLI::IsMember({"area", "off"}))
+                     "3D, after constriction: area (flip edges while the surface area drops, §4.3.2), "
+                     "area-then-delaunay (then Delaunay flips where the surface is nearly flat: more true triangles, "
+                     "slower on smooth convex samples) or off")
+        ->check(CLI::IsMember({"area-then-delaunay", "area", "off"}))
         ->capture_default_str();
     cli_->add_option("--guide", guide_,
                      "3D γ-guided constriction: keep Delaunay faces whose two γ-indicators are ≥ C0 and one ≥ C1, "
@@ -82,6 +84,7 @@ class ReconstructCommand final : public Command {
     if (svg_) io::check_writable(*svg_, context.overwrite);
     options_.constriction.until_indicator = until_;
     if (flips_ == "off") options_.flips.reset();
+    if (flips_ == "area-then-delaunay") options_.flips = FlipCriterion::area_then_delaunay;
     configure_guide();
     if (method_ == "voronoi-skeleton") options_.voronoi_skeleton = VoronoiSkeletonOptions{seeds_};
     configure_augmentation();
