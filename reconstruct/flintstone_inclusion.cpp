@@ -150,6 +150,7 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
 struct AxisSegment {
   Eigen::Vector3d x, q;
   Eigen::Array3d lo, hi;  ///< the segment's own box
+  std::array<double, 6> bounds;  ///< lo, hi as in FlintstoneInclusion3::Node::bounds
   int axis = 0, u = 1, v = 2;  ///< the ray's axis and the two across it (a right-handed u, v, axis)
   int sign = 1;                ///< the sign of q − x along the axis
   // For test_ball:
@@ -168,6 +169,10 @@ struct AxisSegment {
     q[axis] = sign < 0 ? box.min()[axis] - margin : box.max()[axis] + margin;
     lo = x.array().min(q.array());
     hi = x.array().max(q.array());
+    for (int k = 0; k < 3; ++k) {
+      bounds[static_cast<std::size_t>(k)] = hi[k];
+      bounds[static_cast<std::size_t>(k + 3)] = -lo[k];
+    }
     length = hi[axis] - lo[axis];
     direction[axis] = sign;
   }
@@ -228,6 +233,14 @@ inline bool misses(const Eigen::AlignedBox3d& box, const QuerySegment& s) {
 /// and without branches.
 inline bool misses(const Eigen::AlignedBox3d& box, const AxisSegment& s) {
   return ((box.min().array() > s.hi) || (box.max().array() < s.lo)).any();
+}
+
+inline bool misses(const FlintstoneInclusion3::Node& node, const QuerySegment& s) { return misses(node.box(), s); }
+
+inline bool misses(const FlintstoneInclusion3::Node& node, const AxisSegment& s) {
+  for (std::size_t k = 0; k < 6; ++k)
+    if (node.bounds[k] > s.bounds[k]) return true;
+  return false;
 }
 
 inline bool outside(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& x) {
@@ -309,53 +322,54 @@ int tree_parity(const FlintstoneTree3& tree, const Segment& s, InclusionStats& c
 }
 
 /// One ray through the packed index: the volumes and Lemma 6.1 replacements
-/// of tree_parity, but a node's children are tested before they are pushed
-/// (a missed child costs one box test and no stack traffic), the box alone
-/// prunes and the lens F(P) is tested only where it can allow a replacement
-/// (measured: testing it on every visit costs more than it prunes).
+/// of tree_parity in one forward sweep over the depth-first layout — a node
+/// that is missed or replaced jumps to its `skip`, any other node steps into
+/// its subtree — so no stack. The box alone prunes; the lens F(P) is tested
+/// only where it can allow a replacement (measured: testing it on every
+/// visit costs more than it prunes).
 template <class Segment>
 int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionStats& count) {
   Parity<Segment> parity(s, count);
-  thread_local std::vector<int> stack;
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const FlintstoneInclusion3::Node& parent = index.nodes[static_cast<std::size_t>(stack.back())];
-    stack.pop_back();
-    const int end = parent.first_child + parent.child_count;
-    for (int c = parent.first_child; c < end; ++c) {
-      const FlintstoneInclusion3::Node& node = index.nodes[static_cast<std::size_t>(c)];
-      if (misses(node.box, s)) continue;
-      if (node.child_count == 0) {  // a leaf: its face
-        const auto& t = index.triangles[static_cast<std::size_t>(node.first_triangle)];
-        const int r = parity.face(t[0], t[1], t[2]);
-        if (r != 0) return r;
-        continue;
-      }
-      ++count.flintstone_tests;
-      if (node.triangle_count == 0) {  // no short fan: always refined
-        stack.push_back(c);
-        continue;
-      }
-      bool x_outside = outside(node.box, s.x);
+  const int end = static_cast<int>(index.nodes.size());
+  for (int k = 1; k < end;) {  // nodes[0] is the root: never missed, never replaced
+    const FlintstoneInclusion3::Node& node = index.nodes[static_cast<std::size_t>(k)];
+    if (misses(node, s)) {
+      k = node.skip;
+      continue;
+    }
+    if (node.leaf(k)) {
+      const auto& t = index.triangles[static_cast<std::size_t>(node.first_triangle)];
+      const int r = parity.face(t[0], t[1], t[2]);
+      if (r != 0) return r;
+      ++k;
+      continue;
+    }
+    ++count.flintstone_tests;
+    bool x_outside = false;
+    if (node.triangle_count > 0) {  // a short fan: can x use it?
+      x_outside = outside(node.box(), s.x);
       if (!x_outside && node.lens >= 0) {  // F(P) ∩ box
         const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(node.lens)];
         const VolumeTest first = test_ball(lens.first_center, lens.first_radius, s);
-        if (first.segment_misses) continue;
         const VolumeTest second = test_ball(lens.second_center, lens.second_radius, s);
-        if (second.segment_misses) continue;
+        if (first.segment_misses || second.segment_misses) {
+          k = node.skip;
+          continue;
+        }
         x_outside = first.x_outside || second.x_outside;
       }
-      if (!x_outside) {
-        stack.push_back(c);
-        continue;
-      }
-      // Lemma 6.1: the fan over the boundary answers for the node's faces.
-      ++count.replacements;
-      for (int k = node.first_triangle; k < node.first_triangle + node.triangle_count; ++k) {
-        const auto& t = index.triangles[static_cast<std::size_t>(k)];
-        if (parity.fan(t[0], t[1], t[2]) != 0) return -1;
-      }
     }
+    if (!x_outside) {
+      ++k;
+      continue;
+    }
+    // Lemma 6.1: the fan over the boundary answers for the node's faces.
+    ++count.replacements;
+    for (int t = node.first_triangle; t < node.first_triangle + node.triangle_count; ++t) {
+      const auto& triangle = index.triangles[static_cast<std::size_t>(t)];
+      if (parity.fan(triangle[0], triangle[1], triangle[2]) != 0) return -1;
+    }
+    k = node.skip;
   }
   return parity.result();
 }
@@ -412,52 +426,50 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
   index.faces = tree.faces;
   index.root_ball = tree.root().stone.first;
   const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
-  // Breadth first: the (collapsed) children of each packed node are appended
-  // together; `source[k]` is the tree node of packed node k.
-  std::vector<int> source = {0};
-  index.nodes.emplace_back();
-  index.nodes[0].box = tree.root().box;
-  std::vector<int> children, expand;
-  for (std::size_t k = 0; k < source.size(); ++k) {
-    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(source[k])];
-    children.clear();
-    expand.assign(1, source[k]);
-    while (!expand.empty()) {  // collapse chains of nodes that prune little
+  // Depth first; each packed node's children are the tree node's children
+  // with chains that prune little collapsed into their own children.
+  std::vector<int> expand;
+  const auto add = [&](const auto& self, int id) -> void {
+    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
+    const std::size_t k = index.nodes.size();
+    index.nodes.emplace_back();
+    FlintstoneInclusion3::Node& packed = index.nodes.back();
+    for (int i = 0; i < 3; ++i) {
+      packed.bounds[static_cast<std::size_t>(i)] = node.box.min()[i];
+      packed.bounds[static_cast<std::size_t>(i + 3)] = -node.box.max()[i];
+    }
+    packed.first_triangle = static_cast<int>(index.triangles.size());
+    if (node.leaf()) {
+      const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
+      index.triangles.push_back({point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2))});
+    } else if (id != 0 && node.boundary_count <= fan_limit) {
+      for (int e = 0; e < node.boundary_count; ++e) {
+        const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
+        if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
+        index.triangles.push_back({point(node.corners[0]), point(a), point(b)});
+      }
+      if (!node.stone.is_union) {
+        packed.lens = static_cast<int>(index.lenses.size());
+        index.lenses.push_back(
+            {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
+      }
+    }
+    packed.triangle_count = static_cast<int>(index.triangles.size()) - packed.first_triangle;
+    std::vector<int> children;
+    expand.assign(1, id);
+    while (!expand.empty()) {
       const FlintstoneNode3& from = tree.nodes[static_cast<std::size_t>(expand.back())];
       expand.pop_back();
-      for (int c = from.first_child; c < from.first_child + from.child_count; ++c) {
+      for (int c = from.first_child + from.child_count - 1; c >= from.first_child; --c) {
         const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(c)];
-        if (!child.leaf() && k > 0 && !worth_a_visit(child.box, node.box)) expand.push_back(c);
+        if (!child.leaf() && !worth_a_visit(child.box, node.box)) expand.push_back(c);
         else children.push_back(c);
       }
     }
-    index.nodes[k].first_child = static_cast<int>(index.nodes.size());
-    index.nodes[k].child_count = static_cast<int>(children.size());
-    for (const int c : children) {
-      const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(c)];
-      FlintstoneInclusion3::Node packed;
-      packed.box = child.box;
-      packed.first_triangle = static_cast<int>(index.triangles.size());
-      if (child.leaf()) {
-        const int f = tree.face_order[static_cast<std::size_t>(child.first_face)];
-        index.triangles.push_back({point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2))});
-      } else if (child.boundary_count <= fan_limit) {
-        for (int e = 0; e < child.boundary_count; ++e) {
-          const auto [a, b] = tree.boundary[static_cast<std::size_t>(child.first_boundary + e)];
-          if (a == child.corners[0] || b == child.corners[0]) continue;  // a flat fan triangle
-          index.triangles.push_back({point(child.corners[0]), point(a), point(b)});
-        }
-        if (!child.stone.is_union) {
-          packed.lens = static_cast<int>(index.lenses.size());
-          index.lenses.push_back({child.stone.first.center, child.stone.second.center, child.stone.first.radius,
-                                  child.stone.second.radius});
-        }
-      }
-      packed.triangle_count = static_cast<int>(index.triangles.size()) - packed.first_triangle;
-      index.nodes.push_back(packed);
-      source.push_back(c);
-    }
-  }
+    for (const int c : children) self(self, c);
+    index.nodes[k].skip = static_cast<int>(index.nodes.size());
+  };
+  add(add, 0);
   return index;
 }
 
@@ -469,7 +481,7 @@ std::size_t FlintstoneInclusion3::storage_bytes() const {
 bool inside(const FlintstoneInclusion3& index, const Eigen::Vector3d& x, InclusionStats* stats) {
   InclusionStats local;
   InclusionStats& count = stats ? *stats : local;
-  const Eigen::AlignedBox3d& box = index.nodes.front().box;
+  const Eigen::AlignedBox3d box = index.nodes.front().box();
   ++count.flintstone_tests;
   if (outside(box, x) || !index.root_ball.contains(x)) return false;
   const auto answer = first_answer(x, box, index.root_ball,

@@ -47,11 +47,12 @@ bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStat
 /// A flintstone tree packed for many inclusion queries (Lemma 6.1, §7.4):
 /// built once from a FlintstoneTree3, answers exactly what inside(tree, x)
 /// answers with fewer and cheaper node visits.
-///  - Nodes are laid out breadth first with each node's children consecutive
-///    and hold only what a query reads: the box, the child range, the lens
-///    F(P) (an index into `lenses`, none for a union flintstone) and the
-///    triangles that answer for the node: its face for a leaf, the fan over
-///    its boundary for an inner node with a short boundary (Lemma 6.1),
+///  - Nodes are laid out depth first, each with the index just past its
+///    subtree (`skip`), so a query is one forward sweep without a stack, and
+///    hold only what a query reads: the box, the lens F(P) (an index into
+///    `lenses`; none for a union flintstone or where it is never used) and
+///    the triangles that answer for the node: its face for a leaf, the fan
+///    over its boundary for an inner node with a short boundary (Lemma 6.1),
 ///    coordinates copied in so a crossing test reads one record.
 ///  - Chains are collapsed: an inner node whose box is nearly its parent's
 ///    prunes little, so its children are attached to the parent instead
@@ -59,10 +60,18 @@ bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStat
 ///    node's fan is lost).
 struct FlintstoneInclusion3 {
   struct Node {
-    Eigen::AlignedBox3d box;              ///< holds the node's faces and its fan
-    int first_child = 0, child_count = 0;  ///< a leaf has no children
+    /// The box that holds the node's faces and its fan, as min, −max: an
+    /// axis-aligned segment misses it when any of these exceeds the
+    /// segment's max, −min (at most six comparisons, exact).
+    std::array<double, 6> bounds{};
+    int skip = 0;                          ///< the next node after this one's subtree
     int first_triangle = 0, triangle_count = 0;  ///< a leaf's face, or the fan (none: always refined)
     int lens = -1;                         ///< F(P) = lenses[lens].first ∩ .second; -1: the box only
+
+    bool leaf(int self) const { return skip == self + 1; }
+    Eigen::AlignedBox3d box() const {
+      return {Eigen::Vector3d(bounds[0], bounds[1], bounds[2]), Eigen::Vector3d(-bounds[3], -bounds[4], -bounds[5])};
+    }
   };
   struct Lens {
     Eigen::Vector3d first_center, second_center;
