@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace scanstation {
 
@@ -82,10 +83,18 @@ bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::
   return CGAL::collinear(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z()), Point(c.x(), c.y(), c.z()));
 }
 
+/// orientation(x, q, a, b) for any segment x q.
+struct EdgeSide {
+  const Eigen::Vector3d &x, &q;
+  int operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const { return orientation(x, q, a, b); }
+};
+
 /// Does segment x q cross triangle a b c? Exact: orientation signs only.
 /// `degenerate` when the answer would depend on how a touch is counted.
+/// `side(a, b)` is orientation(x, q, a, b) (cheaper for an axis-aligned x q).
+template <class Side>
 Crossing3 segment_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                           const Eigen::Vector3d& x, const Eigen::Vector3d& q) {
+                           const Eigen::Vector3d& x, const Eigen::Vector3d& q, const Side& side) {
   const int sx = orientation(a, b, c, x), sq = orientation(a, b, c, q);
   if (sx == 0 && sq == 0 && collinear(a, b, c)) return Crossing3::none;  // a flat face: its edges are its neighbours'
   if (sx == 0) {
@@ -98,7 +107,7 @@ Crossing3 segment_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, c
   }
   if (sq == 0) return Crossing3::degenerate;
   if (sx == sq) return Crossing3::none;
-  const int e1 = orientation(x, q, a, b), e2 = orientation(x, q, b, c), e3 = orientation(x, q, c, a);
+  const int e1 = side(a, b), e2 = side(b, c), e3 = side(c, a);
   if ((e1 > 0 && e2 > 0 && e3 > 0) || (e1 < 0 && e2 < 0 && e3 < 0)) return Crossing3::once;
   if ((std::min({e1, e2, e3}) < 0 && std::max({e1, e2, e3}) > 0)) return Crossing3::none;
   return Crossing3::degenerate;  // through an edge or a vertex
@@ -132,16 +141,52 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
   return x + (1.5 * radius + 2.0 * distance) * direction;
 }
 
-constexpr int max_attempts = 256;
+/// The first ray: along the axis towards the nearest face of the box of all
+/// vertices, ending beyond it — the shortest segment that leaves every face
+/// behind, and an axis-aligned one, so it meets the fewest node boxes, a box
+/// test is the overlap of two boxes (comparisons only, exact) and an edge
+/// test is a 2D orientation across the axis (CGAL's Side_of_triangle_mesh
+/// casts a vertical ray for the same reasons).
+struct AxisSegment {
+  Eigen::Vector3d x, q;
+  Eigen::Array3d lo, hi;  ///< the segment's own box
+  std::array<double, 6> bounds;  ///< lo, hi as in FlintstoneInclusion3::Node::bounds
+  int axis = 0, u = 1, v = 2;  ///< the ray's axis and the two across it (a right-handed u, v, axis)
+  int sign = 1;                ///< the sign of q − x along the axis
+  // For test_ball:
+  Eigen::Array3d origin, direction = Eigen::Array3d::Zero();
+  double length = 0.0;
+  AxisSegment(const Eigen::Vector3d& point, const Eigen::AlignedBox3d& box) : x(point), q(point), origin(point.array()) {
+    const Eigen::Array3d below = x.array() - box.min().array(), above = box.max().array() - x.array();
+    Eigen::Index down_axis = 0, up_axis = 0;
+    const double down = below.minCoeff(&down_axis), up = above.minCoeff(&up_axis);
+    axis = static_cast<int>(down < up ? down_axis : up_axis);
+    u = (axis + 1) % 3;
+    v = (axis + 2) % 3;
+    sign = down < up ? -1 : 1;
+    // Strictly beyond the box, whatever the rounding at large coordinates.
+    const double margin = 1e-3 * box.sizes().maxCoeff() + 1e-6 * std::abs(x[axis]);
+    q[axis] = sign < 0 ? box.min()[axis] - margin : box.max()[axis] + margin;
+    lo = x.array().min(q.array());
+    hi = x.array().max(q.array());
+    for (int k = 0; k < 3; ++k) {
+      bounds[static_cast<std::size_t>(k)] = hi[k];
+      bounds[static_cast<std::size_t>(k + 3)] = -lo[k];
+    }
+    length = hi[axis] - lo[axis];
+    direction[axis] = sign;
+  }
+  /// orientation(x, q, a, b) = sign(q − x along the axis) · the orientation
+  /// of x, a, b projected across the axis (expand the determinant along q − x).
+  int operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+    return sign * orientation(Eigen::Vector2d(x[u], x[v]), Eigen::Vector2d(a[u], a[v]), Eigen::Vector2d(b[u], b[v]));
+  }
+};
 
-/// Lemma 6.1 pays off while the fan is short; a long fan costs more than
-/// refining (the children are usually missed by the ray).
-constexpr int fan_limit = 4;
-
-/// The ray of one query as a segment x → x + length·direction, with the
-/// direction normalised once so each volume test below costs a few flops.
-/// A zero direction component gets a huge finite inverse, so the slab test
-/// needs no special case and never meets 0·∞.
+/// The later rays (after a degenerate one) as a segment x → x + length·direction,
+/// with the direction normalised once so each volume test below costs a few
+/// flops. A zero direction component gets a huge finite inverse, so the slab
+/// test needs no special case and never meets 0·∞.
 struct QuerySegment {
   Eigen::Vector3d x, q;
   Eigen::Array3d origin, direction, inverse;
@@ -152,7 +197,14 @@ struct QuerySegment {
     direction = length > 0.0 ? Eigen::Array3d(along.array() / length) : Eigen::Array3d::Zero();
     inverse = direction.unaryExpr([](double d) { return d == 0.0 ? 1e300 : 1.0 / d; });
   }
+  int operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const { return orientation(x, q, a, b); }
 };
+
+constexpr int max_attempts = 256;
+
+/// Lemma 6.1 pays off while the fan is short; a long fan costs more than
+/// refining (the children are usually missed by the ray).
+constexpr int fan_limit = 4;
 
 /// A volume against the query: whether x lies outside it and whether the
 /// segment misses it. Both stay on the safe side: a missed volume never
@@ -161,43 +213,81 @@ struct VolumeTest {
   bool x_outside, segment_misses;
 };
 
-/// A ball, with the relative slack of segment_misses.
-inline VolumeTest test_ball(const SignedBall<3>& ball, const QuerySegment& s) {
-  const Eigen::Array3d w = ball.center.array() - s.origin;
-  const double r2 = ball.radius * ball.radius;
+/// A ball (center c, radius r), with the relative slack of segment_misses.
+template <class Segment>
+inline VolumeTest test_ball(const Eigen::Vector3d& c, double r, const Segment& s) {
+  const Eigen::Array3d w = c.array() - s.origin;
+  const double r2 = r * r;
   const double t = std::clamp((w * s.direction).sum(), 0.0, s.length);
   return {w.square().sum() > r2, (w - t * s.direction).square().sum() > r2 * (1.0 + 1e-9)};
 }
 
-/// A box (slab test). The box is widened by a relative slack when built, far
-/// more than the rounding here.
-inline VolumeTest test_box(const Eigen::AlignedBox3d& box, const QuerySegment& s) {
-  const Eigen::Array3d lo = box.min().array() - s.origin, hi = box.max().array() - s.origin;
-  const Eigen::Array3d a = lo * s.inverse, b = hi * s.inverse;
-  const double enter = std::max(a.min(b).maxCoeff(), 0.0), leave = std::min(a.max(b).minCoeff(), s.length);
-  return {(lo > 0.0).any() || (hi < 0.0).any(), enter > leave};
+/// Whether the segment misses a box (slab test). The box is widened by a
+/// relative slack when built, far more than the rounding here.
+inline bool misses(const Eigen::AlignedBox3d& box, const QuerySegment& s) {
+  const Eigen::Array3d a = (box.min().array() - s.origin) * s.inverse, b = (box.max().array() - s.origin) * s.inverse;
+  return std::max(a.min(b).maxCoeff(), 0.0) > std::min(a.max(b).minCoeff(), s.length);
 }
 
-/// One ray through the tree: 0/1 parity, 2 on the boundary, -1 degenerate.
-int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionStats& count) {
-  const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
-  bool odd = false;
-  const auto add = [&](Crossing3 crossing) {
-    if (crossing == Crossing3::once) odd = !odd;
+/// Whether an axis-aligned segment misses a box: its own box does. Exact,
+/// and without branches.
+inline bool misses(const Eigen::AlignedBox3d& box, const AxisSegment& s) {
+  return ((box.min().array() > s.hi) || (box.max().array() < s.lo)).any();
+}
+
+inline bool misses(const FlintstoneInclusion3::Node& node, const QuerySegment& s) { return misses(node.box(), s); }
+
+inline bool misses(const FlintstoneInclusion3::Node& node, const AxisSegment& s) {
+  for (std::size_t k = 0; k < 6; ++k)
+    if (node.bounds[k] > s.bounds[k]) return true;
+  return false;
+}
+
+inline bool outside(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& x) {
+  return ((box.min().array() > x.array()) || (box.max().array() < x.array())).any();
+}
+
+/// Crossing parity of one ray: each call returns 0 to go on, 2 when x lies on
+/// a face, -1 when the ray is degenerate.
+template <class Segment>
+class Parity {
+ public:
+  Parity(const Segment& s, InclusionStats& count) : s_(s), count_(count) {}
+  /// A face of the mesh.
+  int face(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    ++count_.crossing_tests;
+    const Crossing3 crossing = segment_crossing(a, b, c, s_.x, s_.q, s_);
+    if (crossing == Crossing3::once) odd_ = !odd_;
     return crossing == Crossing3::on_boundary ? 2 : crossing == Crossing3::degenerate ? -1 : 0;
-  };
+  }
+  /// A fan triangle (Lemma 6.1): x lies outside the fan's volume, so a touch
+  /// only means that the ray is degenerate.
+  int fan(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    return face(a, b, c) != 0 ? -1 : 0;
+  }
+  int result() const { return odd_ ? 1 : 0; }
+
+ private:
+  const Segment& s_;
+  InclusionStats& count_;
+  bool odd_ = false;
+};
+
+/// One ray through the tree: 0/1 parity, 2 on the boundary, -1 degenerate.
+template <class Segment>
+int tree_parity(const FlintstoneTree3& tree, const Segment& s, InclusionStats& count) {
+  const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
+  Parity<Segment> parity(s, count);
   thread_local std::vector<int> stack;  // reused: no allocation per query
   stack.assign(1, 0);
   while (!stack.empty()) {
     const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(stack.back())];
     const bool root = stack.back() == 0;
     stack.pop_back();
-    const VolumeTest box = test_box(node.box, s);
-    if (!root && box.segment_misses) continue;  // the faces lie in the box; x is not on them
+    if (!root && misses(node.box, s)) continue;  // the faces lie in the box; x is not on them
     if (node.leaf()) {
       const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
-      ++count.crossing_tests;
-      const int r = add(segment_crossing(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)), s.x, s.q));
+      const int r = parity.face(point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2)));
       if (r != 0) return r;
       continue;
     }
@@ -207,15 +297,15 @@ int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionSta
     // segment that misses the volume misses the node's faces, and x then lies
     // outside the volume as well. (The node's bound ball adds nothing here
     // once the box is tested: measured, it prunes < 1% of the visits.)
-    bool outside = box.x_outside;
+    bool x_outside = outside(node.box, s.x);
     if (!root && !node.stone.is_union) {
-      const VolumeTest first = test_ball(node.stone.first, s);
+      const VolumeTest first = test_ball(node.stone.first.center, node.stone.first.radius, s);
       if (first.segment_misses) continue;
-      const VolumeTest second = test_ball(node.stone.second, s);
+      const VolumeTest second = test_ball(node.stone.second.center, node.stone.second.radius, s);
       if (second.segment_misses) continue;
-      outside = outside || first.x_outside || second.x_outside;
+      x_outside = x_outside || first.x_outside || second.x_outside;
     }
-    if (root || !outside || node.boundary_count > fan_limit) {
+    if (root || !x_outside || node.boundary_count > fan_limit) {
       for (int c = 0; c < node.child_count; ++c) stack.push_back(node.first_child + c);
       continue;
     }
@@ -225,11 +315,79 @@ int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionSta
     for (int e = 0; e < node.boundary_count; ++e) {
       const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
       if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
-      ++count.crossing_tests;
-      if (add(segment_crossing(apex, point(a), point(b), s.x, s.q)) != 0) return -1;  // never on a fan: retry
+      if (parity.fan(apex, point(a), point(b)) != 0) return -1;  // retry
     }
   }
-  return odd ? 1 : 0;
+  return parity.result();
+}
+
+/// One ray through the packed index: the volumes and Lemma 6.1 replacements
+/// of tree_parity in one forward sweep over the depth-first layout — a node
+/// that is missed or replaced jumps to its `skip`, any other node steps into
+/// its subtree — so no stack. The box alone prunes; the lens F(P) is tested
+/// only where it can allow a replacement (measured: testing it on every
+/// visit costs more than it prunes).
+template <class Segment>
+int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionStats& count) {
+  Parity<Segment> parity(s, count);
+  const int end = static_cast<int>(index.nodes.size());
+  for (int k = 1; k < end;) {  // nodes[0] is the root: never missed, never replaced
+    const FlintstoneInclusion3::Node& node = index.nodes[static_cast<std::size_t>(k)];
+    if (misses(node, s)) {
+      k = node.skip;
+      continue;
+    }
+    if (node.leaf(k)) {
+      const auto& t = index.triangles[static_cast<std::size_t>(node.first_triangle)];
+      const int r = parity.face(t[0], t[1], t[2]);
+      if (r != 0) return r;
+      ++k;
+      continue;
+    }
+    ++count.flintstone_tests;
+    bool x_outside = false;
+    if (node.triangle_count > 0) {  // a short fan: can x use it?
+      x_outside = outside(node.box(), s.x);
+      if (!x_outside && node.lens >= 0) {  // F(P) ∩ box
+        const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(node.lens)];
+        const VolumeTest first = test_ball(lens.first_center, lens.first_radius, s);
+        const VolumeTest second = test_ball(lens.second_center, lens.second_radius, s);
+        if (first.segment_misses || second.segment_misses) {
+          k = node.skip;
+          continue;
+        }
+        x_outside = first.x_outside || second.x_outside;
+      }
+    }
+    if (!x_outside) {
+      ++k;
+      continue;
+    }
+    // Lemma 6.1: the fan over the boundary answers for the node's faces.
+    ++count.replacements;
+    for (int t = node.first_triangle; t < node.first_triangle + node.triangle_count; ++t) {
+      const auto& triangle = index.triangles[static_cast<std::size_t>(t)];
+      if (parity.fan(triangle[0], triangle[1], triangle[2]) != 0) return -1;
+    }
+    k = node.skip;
+  }
+  return parity.result();
+}
+
+/// Rays until one is not degenerate: the axis ray first, then rays leaving
+/// the root ball about radially (perturbed by the spiral), the shortest way
+/// out, so they meet few flintstones. `parity(segment)` is 0/1, 2 on the
+/// boundary, -1 degenerate.
+template <class RayParity>
+std::optional<bool> first_answer(const Eigen::Vector3d& x, const Eigen::AlignedBox3d& box, const SignedBall<3>& ball,
+                                 const RayParity& parity) {
+  const int r = parity(AxisSegment(x, box));
+  if (r >= 0) return r != 0;
+  for (int attempt = 0; attempt < max_attempts; ++attempt) {
+    const int r = parity(QuerySegment(x, outward_point(x, attempt, ball.center, ball.radius)));
+    if (r >= 0) return r != 0;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -237,14 +395,98 @@ int tree_parity(const FlintstoneTree3& tree, const QuerySegment& s, InclusionSta
 bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStats* stats) {
   InclusionStats local;
   InclusionStats& count = stats ? *stats : local;
-  const Flintstone<3>& root = tree.root().stone;
+  const FlintstoneNode3& root = tree.root();
   ++count.flintstone_tests;
-  if (!root.contains(x)) return false;
-  for (int attempt = 0; attempt < max_attempts; ++attempt) {
-    const int r = tree_parity(tree, QuerySegment(x, outward_point(x, attempt, root.first.center, root.first.radius)), count);
-    if (r >= 0) return r != 0;
-  }
-  return inside_brute_force(tree.vertices, tree.faces, x);
+  if (!root.stone.contains(x) || outside(root.box, x)) return false;
+  const auto answer = first_answer(x, root.box, root.stone.first,
+                                   [&](const auto& segment) { return tree_parity(tree, segment, count); });
+  return answer ? *answer : inside_brute_force(tree.vertices, tree.faces, x);
+}
+
+namespace {
+
+/// Chain collapsing: an inner node is kept only when its box's surface area
+/// is below this share of its packed parent's (a ray across the parent
+/// meets the child with a chance about the ratio of their areas).
+constexpr double collapse_ratio = 0.8;
+
+bool worth_a_visit(const Eigen::AlignedBox3d& child, const Eigen::AlignedBox3d& parent) {
+  const auto area = [](const Eigen::AlignedBox3d& box) {
+    const Eigen::Vector3d d = box.sizes();
+    return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
+  };
+  return area(child) < collapse_ratio * area(parent);
+}
+
+}  // namespace
+
+FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
+  FlintstoneInclusion3 index;
+  index.vertices = tree.vertices;
+  index.faces = tree.faces;
+  index.root_ball = tree.root().stone.first;
+  const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
+  // Depth first; each packed node's children are the tree node's children
+  // with chains that prune little collapsed into their own children.
+  std::vector<int> expand;
+  const auto add = [&](const auto& self, int id) -> void {
+    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
+    const std::size_t k = index.nodes.size();
+    index.nodes.emplace_back();
+    FlintstoneInclusion3::Node& packed = index.nodes.back();
+    for (int i = 0; i < 3; ++i) {
+      packed.bounds[static_cast<std::size_t>(i)] = node.box.min()[i];
+      packed.bounds[static_cast<std::size_t>(i + 3)] = -node.box.max()[i];
+    }
+    packed.first_triangle = static_cast<int>(index.triangles.size());
+    if (node.leaf()) {
+      const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
+      index.triangles.push_back({point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2))});
+    } else if (id != 0 && node.boundary_count <= fan_limit) {
+      for (int e = 0; e < node.boundary_count; ++e) {
+        const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
+        if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
+        index.triangles.push_back({point(node.corners[0]), point(a), point(b)});
+      }
+      if (!node.stone.is_union) {
+        packed.lens = static_cast<int>(index.lenses.size());
+        index.lenses.push_back(
+            {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
+      }
+    }
+    packed.triangle_count = static_cast<int>(index.triangles.size()) - packed.first_triangle;
+    std::vector<int> children;
+    expand.assign(1, id);
+    while (!expand.empty()) {
+      const FlintstoneNode3& from = tree.nodes[static_cast<std::size_t>(expand.back())];
+      expand.pop_back();
+      for (int c = from.first_child + from.child_count - 1; c >= from.first_child; --c) {
+        const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(c)];
+        if (!child.leaf() && !worth_a_visit(child.box, node.box)) expand.push_back(c);
+        else children.push_back(c);
+      }
+    }
+    for (const int c : children) self(self, c);
+    index.nodes[k].skip = static_cast<int>(index.nodes.size());
+  };
+  add(add, 0);
+  return index;
+}
+
+std::size_t FlintstoneInclusion3::storage_bytes() const {
+  return nodes.size() * sizeof(Node) + lenses.size() * sizeof(Lens) + triangles.size() * sizeof(triangles[0]) +
+         static_cast<std::size_t>(vertices.size()) * sizeof(double) + static_cast<std::size_t>(faces.size()) * sizeof(int);
+}
+
+bool inside(const FlintstoneInclusion3& index, const Eigen::Vector3d& x, InclusionStats* stats) {
+  InclusionStats local;
+  InclusionStats& count = stats ? *stats : local;
+  const Eigen::AlignedBox3d box = index.nodes.front().box();
+  ++count.flintstone_tests;
+  if (outside(box, x) || !index.root_ball.contains(x)) return false;
+  const auto answer = first_answer(x, box, index.root_ball,
+                                   [&](const auto& segment) { return index_parity(index, segment, count); });
+  return answer ? *answer : inside_brute_force(index.vertices, index.faces, x);
 }
 
 bool inside_brute_force(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::Vector3d& x) {
@@ -254,7 +496,7 @@ bool inside_brute_force(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     bool odd = false, retry = false;
     for (Eigen::Index f = 0; f < F.rows() && !retry; ++f) {
       const Crossing3 crossing = segment_crossing(V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(),
-                                                  V.row(F(f, 2)).transpose(), x, q);
+                                                  V.row(F(f, 2)).transpose(), x, q, EdgeSide{x, q});
       if (crossing == Crossing3::on_boundary) return true;
       retry = crossing == Crossing3::degenerate;
       odd ^= crossing == Crossing3::once;

@@ -11,7 +11,9 @@
 #include "reconstruct/flintstone_tree2.h"
 #include "reconstruct/flintstone_tree3.h"
 
+#include <array>
 #include <cstddef>
+#include <vector>
 
 namespace scanstation {
 
@@ -41,6 +43,55 @@ bool inside_brute_force(const Eigen::MatrixX2d& V, const Eigen::Vector2d& x);
 /// only while it is short (≤ 4 edges): measured on real meshes, refining a
 /// node the ray hits is cheaper than testing a long fan.
 bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStats* stats = nullptr);
+
+/// A flintstone tree packed for many inclusion queries (Lemma 6.1, §7.4):
+/// built once from a FlintstoneTree3, answers exactly what inside(tree, x)
+/// answers with fewer and cheaper node visits.
+///  - Nodes are laid out depth first, each with the index just past its
+///    subtree (`skip`), so a query is one forward sweep without a stack, and
+///    hold only what a query reads: the box, the lens F(P) (an index into
+///    `lenses`; none for a union flintstone or where it is never used) and
+///    the triangles that answer for the node: its face for a leaf, the fan
+///    over its boundary for an inner node with a short boundary (Lemma 6.1),
+///    coordinates copied in so a crossing test reads one record.
+///  - Chains are collapsed: an inner node whose box is nearly its parent's
+///    prunes little, so its children are attached to the parent instead
+///    (the parent's volume still holds them; only a chance to use the
+///    node's fan is lost).
+struct FlintstoneInclusion3 {
+  struct Node {
+    /// The box that holds the node's faces and its fan, as min, −max: an
+    /// axis-aligned segment misses it when any of these exceeds the
+    /// segment's max, −min (at most six comparisons, exact).
+    std::array<double, 6> bounds{};
+    int skip = 0;                          ///< the next node after this one's subtree
+    int first_triangle = 0, triangle_count = 0;  ///< a leaf's face, or the fan (none: always refined)
+    int lens = -1;                         ///< F(P) = lenses[lens].first ∩ .second; -1: the box only
+
+    bool leaf(int self) const { return skip == self + 1; }
+    Eigen::AlignedBox3d box() const {
+      return {Eigen::Vector3d(bounds[0], bounds[1], bounds[2]), Eigen::Vector3d(-bounds[3], -bounds[4], -bounds[5])};
+    }
+  };
+  struct Lens {
+    Eigen::Vector3d first_center, second_center;
+    double first_radius = 0.0, second_radius = 0.0;
+  };
+  std::vector<Node> nodes;  ///< nodes[0] is the root (the whole mesh)
+  std::vector<Lens> lenses;
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+  SignedBall<3> root_ball;  ///< the root flintstone
+  Eigen::MatrixX3d vertices;  ///< the mesh, for the last-resort brute force
+  Eigen::MatrixX3i faces;
+
+  std::size_t storage_bytes() const;
+};
+
+/// Packs `tree` for queries (linear time).
+FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree);
+
+/// The answer of inside(tree, x) for the tree the index was built from.
+bool inside(const FlintstoneInclusion3& index, const Eigen::Vector3d& x, InclusionStats* stats = nullptr);
 
 /// The same answer by testing every face of the closed mesh (V, F).
 bool inside_brute_force(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::Vector3d& x);

@@ -56,10 +56,10 @@ class InsideCommand final : public Command {
       query_seconds = timer.stop();
     } else {
       StageTimer build(context.report, "build");
-      const FlintstoneTree3 tree = mesh_tree(input);
+      const FlintstoneInclusion3 index = inclusion_index(mesh_tree(input));
       build.stop();
       StageTimer timer(context.report, "query");
-      for (Eigen::Index i = 0; i < queries.size(); ++i) answer(inside(tree, queries.positions.row(i).transpose(), &stats));
+      for (Eigen::Index i = 0; i < queries.size(); ++i) answer(inside(index, queries.positions.row(i).transpose(), &stats));
       query_seconds = timer.stop();
     }
     io::write_file_atomically(output_, labels, context.overwrite);

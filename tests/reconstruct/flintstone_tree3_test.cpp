@@ -79,12 +79,18 @@ std::vector<Eigen::Vector3d> queries_near(const TriangleMesh& mesh, int count, s
     if (u + v > 1) u = 1 - u, v = 1 - v;
     const Eigen::Vector3d on = a + u * (b - a) + v * (c - a);
     const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-    switch (k % 6) {
+    switch (k % 7) {
       case 0: queries.push_back(lo + (hi - lo).cwiseProduct(Eigen::Vector3d(random.uniform(), random.uniform(), random.uniform()))); break;
       case 1: queries.push_back(a); break;
       case 2: queries.push_back(on); break;
       case 3: queries.push_back(on + 1e-12 * size * random.normal() * normal); break;
       case 4: queries.push_back(0.5 * (a + b) + 1e-9 * size * random.normal() * normal); break;
+      case 5: {  // straight above or beside a vertex: the axis ray passes through it
+        Eigen::Vector3d x = a;
+        x[static_cast<Eigen::Index>(random.below(3))] += 0.1 * size * random.normal();
+        queries.push_back(x);
+        break;
+      }
       default: queries.push_back(on + 1e-2 * size * random.normal() * normal); break;
     }
   }
@@ -93,15 +99,21 @@ std::vector<Eigen::Vector3d> queries_near(const TriangleMesh& mesh, int count, s
 
 void expect_inclusion_matches_brute_force(const FlintstoneTree3& tree, const TriangleMesh& mesh, int count,
                                           const std::string& what) {
-  int disagreements = 0, inside_count = 0;
-  InclusionStats stats;
+  int disagreements = 0, index_disagreements = 0, inside_count = 0;
+  InclusionStats stats, index_stats;
+  const FlintstoneInclusion3 index = inclusion_index(tree);
   for (const Eigen::Vector3d& x : queries_near(mesh, count, 17)) {
     const bool expected = inside_brute_force(mesh.vertices.positions, mesh.faces, x);
     inside_count += expected;
     disagreements += inside(tree, x, &stats) != expected;
+    index_disagreements += inside(index, x, &index_stats) != expected;
   }
   EXPECT_EQ(disagreements, 0) << what;
+  EXPECT_EQ(index_disagreements, 0) << what << ": packed index";
   EXPECT_GT(stats.replacements, 0u) << what << ": Lemma 6.1 never used";
+  EXPECT_GT(index_stats.replacements, 0u) << what << ": Lemma 6.1 never used by the packed index";
+  // The packed index visits fewer flintstones than the tree (chains collapsed).
+  EXPECT_LT(index_stats.flintstone_tests, stats.flintstone_tests) << what;
   if (mesh.face_count() >= 1000) {  // hierarchy pays: a small share of the brute-force tests
     EXPECT_LT(stats.crossing_tests, static_cast<std::size_t>(count * mesh.face_count()) / 20) << what;
   }
@@ -141,6 +153,29 @@ TEST(FlintstoneTree3, RealMeshes) {
     expect_inclusion_matches_brute_force(tree, mesh, name == "elephant.off" ? 600 : 1500, name);
     // Storage Θ(N_t) (Theorem 7.4): fewer than two nodes per face.
     EXPECT_LT(tree.nodes.size(), 2 * static_cast<std::size_t>(mesh.face_count())) << name;
+  }
+}
+
+TEST(FlintstoneInclusion3, PackedIndexAnswersAsTheTree) {
+  // Many queries, no brute force: the packed index (collapsed chains, box
+  // pruning, axis ray) must answer exactly what the tree answers.
+  for (const std::string name : {"cube.off", "cactus.off", "elephant.off", "armadillo.off"}) {
+    const TriangleMesh mesh = io::read_mesh(test::cgal_data("meshes/" + name));
+    const FlintstoneTree3 tree = flintstone_tree(mesh);
+    const FlintstoneInclusion3 index = inclusion_index(tree);
+    ASSERT_TRUE(index.nodes.front().box().isApprox(tree.root().box, 0.0)) << name;
+    EXPECT_LE(index.nodes.size(), tree.nodes.size()) << name;
+    EXPECT_GT(index.storage_bytes(), 0u) << name;
+    int disagreements = 0, inside_count = 0;
+    const std::vector<Eigen::Vector3d> queries = queries_near(mesh, 6000, 23);
+    for (const Eigen::Vector3d& x : queries) {
+      const bool expected = inside(tree, x);
+      inside_count += expected;
+      disagreements += inside(index, x) != expected;
+    }
+    EXPECT_EQ(disagreements, 0) << name;
+    EXPECT_GT(inside_count, 600) << name;
+    EXPECT_LT(inside_count, 6000) << name;
   }
 }
 
