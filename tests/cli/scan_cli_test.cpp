@@ -108,13 +108,19 @@ TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   EXPECT_TRUE(mesh.vertices.has_colors()) << "the points' colours";
 }
 
-TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
-  std::vector<json> steps;
-  std::istringstream in(scan_->err);
+// The JSON progress lines of one kind ("step", "boundary") in `err`.
+std::vector<json> progress_events(const std::string& err, const std::string& kind) {
+  std::vector<json> events;
+  std::istringstream in(err);
   for (std::string line; std::getline(in, line);) {
     const json event = json::parse(line, nullptr, false);
-    if (!event.is_discarded() && event["event"] == "step") steps.push_back(event);
+    if (!event.is_discarded() && event["event"] == kind) events.push_back(event);
   }
+  return events;
+}
+
+TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
+  const std::vector<json> steps = progress_events(scan_->err, "step");
   ASSERT_EQ(steps.size(), std::size_t(kSteps)) << scan_->err;
   EXPECT_DOUBLE_EQ(steps[0]["angle_deg"].get<double>(), 0.0);
   EXPECT_NEAR(steps[1]["angle_deg"].get<double>(), 360.0 / kSteps, 0.2);
@@ -124,12 +130,7 @@ TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
 }
 
 TEST_F(ScannedSphere, ProgressJsonFollowsTheLiveBoundaryStepByStep) {
-  std::vector<json> live;
-  std::istringstream in(scan_->err);
-  for (std::string line; std::getline(in, line);) {
-    const json event = json::parse(line, nullptr, false);
-    if (!event.is_discarded() && event["event"] == "boundary") live.push_back(event);
-  }
+  const std::vector<json> live = progress_events(scan_->err, "boundary");
   ASSERT_EQ(live.size(), std::size_t(kSteps)) << scan_->err;
   for (std::size_t i = 1; i < live.size(); ++i) {
     EXPECT_GT(live[i]["points"].get<int>(), live[i - 1]["points"].get<int>());
