@@ -29,7 +29,8 @@ TriangleMesh builtin(const std::string& name) {
     return t;
   }
   if (name == "chalice") return surface_of_revolution(40.0 * chalice_profile(300), 720);
-  return surface_of_revolution(40.0 * candlestick_profile(300), 720);
+  // 34 mm per profile unit: 78 mm high, within the station rig's 80 mm.
+  return surface_of_revolution(34.0 * candlestick_profile(300), 720);
 }
 
 }  // namespace

@@ -33,7 +33,7 @@ struct ScanObject {
 
 /// Names of the built-in objects: sphere (r 30 mm, off the axis), ellipsoid,
 /// torus (genus 1, lying on the platter), chalice (a deep concavity) and
-/// candlestick (grooves).
+/// candlestick (grooves, 78 mm high).
 const std::vector<std::string>& builtin_scan_objects();
 
 /// A built-in object by name, or else the mesh file `name_or_file` (any
