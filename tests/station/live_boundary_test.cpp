@@ -6,10 +6,15 @@
 #include "sim/arrival_order.h"
 #include "sim/sampling.h"
 #include "sim/scan_objects.h"
+#include "sim/shapes.h"
+#include "acquisition/stereo_reconstruction.h"
+#include "sim/stereo_rig.h"
 #include "station/live_boundary.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <numbers>
+#include <opencv2/core.hpp>
 
 namespace scanstation {
 namespace {
@@ -80,6 +85,47 @@ TEST(LiveBoundary, DigestTellsWhetherTwoRunsWereFedTheSamePoints) {
   station::StreamDigest reordered;
   for (int s = 3; s >= 0; --s) reordered.add(steps[static_cast<std::size_t>(s)]);
   EXPECT_NE(a.value(), reordered.value());
+}
+
+}  // namespace
+}  // namespace scanstation
+
+namespace scanstation {
+namespace {
+
+// Points from the stereo pipeline feed the live boundary the same way: one
+// batch per turntable view, noisy and overlapping, still a closed genus-0
+// boundary through every point after every view.
+TEST(LiveBoundary, GrowsFromStereoViewsToo) {
+  constexpr double platter_radius = 60.0, radius = 25.0;
+  TriangleMesh sphere = sim::ellipsoid(Eigen::Vector3d::Constant(radius), 5);
+  sphere.vertices.positions.col(2).array() += radius;
+  const sim::StereoRig rig = sim::stereo_rig(2 * radius, platter_radius, 160, 120);
+  const sim::SceneRenderer renderer(sim::stereo_scene(sphere, rig, platter_radius, true));
+  acquisition::StereoStation station = acquisition::stereo_station(rig.left, rig.right);
+  acquisition::StereoReconstructionOptions options;
+  options.matcher = acquisition::fit_disparity_range(station, platter_radius, 2 * radius, options.matcher);
+  options.maximum_radius = radius + 2.0;
+  LiveBoundary live;
+  Eigen::Index rows = 0;
+  for (int v = 0; v < 6; ++v) {
+    const double angle = 2.0 * std::numbers::pi * v / 6;
+    const cv::Mat left = renderer.expose(renderer.cast(rig.left, angle), {}, 2 * static_cast<std::uint64_t>(v));
+    const cv::Mat right = renderer.expose(renderer.cast(rig.right, angle), {}, 2 * static_cast<std::uint64_t>(v) + 1);
+    const acquisition::LaserScanPoints view = acquisition::stereo_view_points(station, left, right, angle, options);
+    ASSERT_GT(view.cloud.size(), 100) << "view " << v;
+    rows += view.cloud.size();
+    const station::LiveStep step = live.add_step(v, angle * 180 / std::numbers::pi, {view});
+    EXPECT_EQ(step.step_points, view.cloud.size());
+    if (v == 0) continue;
+    EXPECT_EQ(step.boundary_faces, 2 * (step.points - Eigen::Index(step.pending)) - 4) << "view " << v;
+  }
+  const SurfaceReconstruction final_surface = live.constriction().surface();
+  EXPECT_TRUE(final_surface.statistics.all_on_boundary);
+  const MeshTopology t = mesh_topology(final_surface.mesh);
+  EXPECT_TRUE(t.closed && t.oriented);
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_EQ(final_surface.mesh.vertex_count() + final_surface.statistics.duplicates_merged, rows);
 }
 
 }  // namespace
