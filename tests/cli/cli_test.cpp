@@ -258,7 +258,7 @@ TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
   for (const char* f : {"points.ply", "object.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png"})
     EXPECT_EQ(slurp(dir / "a" / f), slurp(dir / "b" / f)) << f;
   const auto report = nlohmann::json::parse(slurp(dir / "a/report.json"));
-  EXPECT_EQ(report["object"]["name"], "candlestick");
+  EXPECT_EQ(report["object"]["name"], "ellipsoid");
   EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
   EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
   EXPECT_EQ(report["boundary"]["all_on_boundary"], true);
