@@ -17,15 +17,18 @@ namespace {
 constexpr double degree = std::numbers::pi / 180.0;
 const cv::Size board_size{9, 6};
 
-drivers::StationDescription small_station() {
+// A small simulated station whose table stands at `table_deg` at power-up.
+drivers::StationDescription small_station(double table_deg) {
   drivers::StationDescription d;
   d.camera.format.size = {320, 240};
   d.lasers = {drivers::LaserRole{}, drivers::LaserRole{}};
+  d.sim_table_angle_deg = table_deg;
   return d;
 }
 
 struct Bench {
-  drivers::StationDescription description = small_station();
+  explicit Bench(double table_deg = 0) : description(small_station(table_deg)) {}
+  drivers::StationDescription description;
   sim::TurntableLaserRig rig = sim::station_rig(description);
   sim::CalibrationStation station{description, rig, 7};
 
@@ -81,7 +84,7 @@ TEST(CalibrationCapture, TurntableViewsTurnTheTableThroughTheStepper) {
 }
 
 TEST(CalibrationCapture, BoardViewsSwitchEachLaserAloneAndFollowTheOperator) {
-  Bench bench;
+  Bench bench(30.0);  // the operator places the board as seen, wherever the table stands
   TurntableScanDevices devices = bench.devices();
   const auto placements = sim::laser_placements(board_size.width, board_size.height, 10.0);
   const std::vector<CalibrationView> views = capture_board_views(
