@@ -11,6 +11,7 @@ nlohmann::json to_json(const TurntableGeometry& geometry) {
   for (const LaserPlane& plane : geometry.lasers) lasers.push_back(scanstation::to_json(plane));
   nlohmann::json document = {
       {"source", geometry.source}, {"camera", scanstation::to_json(geometry.camera)}, {"lasers", lasers}};
+  if (geometry.right_camera) document["right_camera"] = scanstation::to_json(*geometry.right_camera);
   if (!geometry.calibration.is_null()) document["calibration"] = geometry.calibration;
   return document;
 }

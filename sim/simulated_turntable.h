@@ -35,6 +35,9 @@ inline constexpr double kSimulatedPlatterRadius = 60.0;
 /// Throws InvalidInput for a station with no laser or more than two.
 TurntableLaserRig station_rig(const drivers::StationDescription& station);
 
+/// Throws InvalidInput when `object` stands taller than the simulated rigs frame.
+void check_fits_rig(const ScanObject& object);
+
 /// The rig's true camera and light planes (source "simulator truth").
 acquisition::TurntableGeometry truth_geometry(const TurntableLaserRig& rig);
 
