@@ -3,10 +3,13 @@
 
 #include "test_support.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 namespace scanstation::test {
@@ -29,6 +32,17 @@ inline Outcome scanstation(const std::string& args) {
                               (io / "err").string() + " </dev/null";
   const int status = std::system(command.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(io / "out"), slurp(io / "err")};
+}
+
+/// The JSON progress lines of one kind ("step", "boundary") in `err`.
+inline std::vector<nlohmann::json> progress_events(const std::string& err, const std::string& kind) {
+  std::vector<nlohmann::json> events;
+  std::istringstream in(err);
+  for (std::string line; std::getline(in, line);) {
+    const nlohmann::json event = nlohmann::json::parse(line, nullptr, false);
+    if (!event.is_discarded() && event["event"] == kind) events.push_back(event);
+  }
+  return events;
 }
 
 }  // namespace scanstation::test

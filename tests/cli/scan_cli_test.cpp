@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::Outcome;
+using test::progress_events;
 using test::ScratchFolder;
 using test::scanstation;
 using test::slurp;
@@ -106,17 +107,6 @@ TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   const TriangleMesh mesh = io::read_mesh(session() / "mesh.ply");
   EXPECT_EQ(mesh.vertex_count(), report["boundary"]["vertices"].get<Eigen::Index>());
   EXPECT_TRUE(mesh.vertices.has_colors()) << "the points' colours";
-}
-
-// The JSON progress lines of one kind ("step", "boundary") in `err`.
-std::vector<json> progress_events(const std::string& err, const std::string& kind) {
-  std::vector<json> events;
-  std::istringstream in(err);
-  for (std::string line; std::getline(in, line);) {
-    const json event = json::parse(line, nullptr, false);
-    if (!event.is_discarded() && event["event"] == kind) events.push_back(event);
-  }
-  return events;
 }
 
 TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
