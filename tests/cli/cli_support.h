@@ -34,6 +34,17 @@ inline Outcome scanstation(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(io / "out"), slurp(io / "err")};
 }
 
+/// A report's "boundary" of the station flow: grown live (incremental), a
+/// closed genus-0 2-manifold with every distinct point on it.
+inline void expect_live_closed_genus_zero(const nlohmann::json& boundary) {
+  EXPECT_EQ(boundary["built"], "incremental");
+  EXPECT_EQ(boundary["topology"]["closed"], true);
+  EXPECT_EQ(boundary["topology"]["genus"], 0);
+  EXPECT_EQ(boundary["topology"]["manifold"], true);
+  EXPECT_EQ(boundary["all_on_boundary"], true);
+  EXPECT_EQ(boundary["vertices"], boundary["distinct_points"]);
+}
+
 /// The JSON progress lines of one kind ("step", "boundary") in `err`.
 inline std::vector<nlohmann::json> progress_events(const std::string& err, const std::string& kind) {
   std::vector<nlohmann::json> events;
