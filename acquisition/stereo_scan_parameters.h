@@ -29,7 +29,7 @@ struct StereoScanParameters {
 };
 
 /// The defaults of a turntable stereo scan: reconstruction_matcher_options()
-/// (no invented geometry) and every 4th pixel of every 4th row.
+/// (no invented geometry) and every 8th pixel of every 8th row.
 StereoScanParameters stereo_scan_defaults();
 
 /// {"block_size", "uniqueness_ratio", "speckle_window_size", "speckle_range",

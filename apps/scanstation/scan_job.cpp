@@ -46,16 +46,41 @@ acquisition::TurntableGeometry stereo_geometry(const ScanJob& job, const sim::St
   return sim::stereo_truth_geometry(rig);
 }
 
-SessionRecorder create_session(CommandContext& context, const ScanJob& job, const sim::ScanObject& object,
-                               const acquisition::TurntableGeometry& geometry) {
+// The simulated station's rig, laser or stereo, with the object on it.
+struct SimulatedRig {
+  std::optional<sim::SimulatedTurntable> laser;
+  std::optional<sim::SimulatedStereo> stereo;
+  const sim::ScanObject& object() const { return stereo ? stereo->object : laser->object; }
+};
+
+SimulatedRig simulated_rig(CommandContext& context, const ScanJob& job, const std::string& rig_name,
+                           const std::string& object, std::uint64_t seed) {
+  SimulatedRig rig;
+  const drivers::StationDescription& d = job.station;
+  if (rig_name == "stereo") {
+    rig.stereo.emplace(sim::simulated_stereo(sim::scan_object(object), d, seed));
+    if (!d.projector)
+      context.log->warn("{}: no [projector]: passive stereo, texture-less surfaces give few points",
+                        d.source.empty() ? d.name : d.source.string());
+  } else {
+    rig.laser.emplace(sim::simulated_turntable(sim::scan_object(object), d, seed));
+  }
+  return rig;
+}
+
+SessionRecorder create_session(CommandContext& context, const ScanJob& job, const SimulatedRig& rig) {
   acquisition::SessionManifest manifest;
   manifest.rig = job.rig;
   manifest.steps = job.steps;
   manifest.station = acquisition::station_json(job.station);
   manifest.station["sim_seed"] = job.seed;
-  manifest.geometry = geometry;
+  manifest.geometry = rig.stereo ? stereo_geometry(job, rig.stereo->rig)
+                                 : acquisition::scan_geometry(job.calibration, job.station,
+                                                              sim::truth_geometry(rig.laser->rig),
+                                                              job.calibration_max_age);
   manifest.parameters = job.parameters;
   manifest.stereo_parameters = job.stereo_parameters;
+  const sim::ScanObject& object = rig.object();
   manifest.object = {job.object, object.mesh_file, {object.scale, object.translation}};
   manifest.software_version = kVersion;
   return SessionRecorder::create(job.folder, manifest, context.overwrite);
@@ -75,9 +100,11 @@ struct Capture {
 using RigRecording = std::function<acquisition::RecordingOutcome(
     sim::OpenStation& station, const acquisition::RecordedStepSink& on_step, const std::function<bool()>& stop)>;
 
-Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, unsigned roles,
-                const sim::FrameSourceFactory& frames, const sim::FrameSourceFactory& right_frames,
-                const RigRecording& record, const std::function<void(int, double, const std::vector<acquisition::LaserScanPoints>&)>& feed) {
+using StepFeed = std::function<void(int step, double angle_deg, const std::vector<acquisition::LaserScanPoints>&)>;
+
+Capture record_on_devices(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, unsigned roles,
+                          const sim::FrameSourceFactory& frames, const sim::FrameSourceFactory& right_frames,
+                          const RigRecording& record, const StepFeed& feed) {
   // Guarded before the first line is requested: a signal at any moment leaves
   // the station safe, and the capture stops after the step it is taking.
   sim::GuardedStation station(job.station, roles, frames, drivers::OnSignal::stop_work, right_frames);
@@ -113,6 +140,35 @@ Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& re
   timer.stop();
   station->make_safe();
   return result;
+}
+
+// Records the steps the session lacks with the rig's devices, each step's
+// points to `feed`.
+Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, const SimulatedRig& rig,
+                const StepFeed& feed) {
+  const drivers::StationDescription& d = job.station;
+  const int stop_after = job.stop_after.value_or(0);
+  if (rig.stereo) {
+    const unsigned roles = sim::camera_role | sim::right_camera_role | sim::turntable_role |
+                           (d.projector ? sim::projector_role : 0u);
+    return record_on_devices(
+        context, job, recorder, roles, rig.stereo->left_frames, rig.stereo->right_frames,
+        [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
+          acquisition::StereoScanDevices devices{*station.camera,    *station.right_camera, station.projector.get(),
+                                                 *station.turntable, *station.clock,        d.camera.timeout};
+          return acquisition::record_stereo_session(devices, recorder, on_step, stop_after, stop);
+        },
+        feed);
+  }
+  return record_on_devices(
+      context, job, recorder, sim::camera_role | sim::laser_role | sim::turntable_role, rig.laser->frames, {},
+      [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
+        acquisition::TurntableScanDevices devices{*station.camera, {}, *station.turntable, *station.clock,
+                                                  d.camera.timeout};
+        for (auto& laser : station.lasers) devices.lasers.push_back(laser.get());
+        return acquisition::record_turntable_session(devices, recorder, on_step, stop_after, stop);
+      },
+      feed);
 }
 
 std::string live_detail(const station::LiveStep& s, int steps) {
@@ -187,24 +243,8 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
   // A resumed scan simulates what the session recorded, with its noise seed.
   const std::string object = recorder ? recorded_object(recorder->manifest()) : job.object;
   const std::uint64_t seed = recorder ? recorder->manifest().station.value("sim_seed", job.seed) : job.seed;
-  const bool stereo = (recorder ? recorder->manifest().rig : job.rig) == "stereo";
-  // One of the two simulated rigs, and how its devices record the steps.
-  std::optional<sim::SimulatedTurntable> laser_rig;
-  std::optional<sim::SimulatedStereo> stereo_rig;
-  if (stereo) {
-    stereo_rig.emplace(sim::simulated_stereo(sim::scan_object(object), description, seed));
-    if (!description.projector)
-      context.log->warn("{}: no [projector]: passive stereo, texture-less surfaces give few points",
-                        description.source.empty() ? description.name : description.source.string());
-  } else {
-    laser_rig.emplace(sim::simulated_turntable(sim::scan_object(object), description, seed));
-  }
-  if (!recorder)
-    recorder.emplace(stereo ? create_session(context, job, stereo_rig->object, stereo_geometry(job, stereo_rig->rig))
-                            : create_session(context, job, laser_rig->object,
-                                             acquisition::scan_geometry(job.calibration, description,
-                                                                        sim::truth_geometry(laser_rig->rig),
-                                                                        job.calibration_max_age)));
+  const SimulatedRig rig = simulated_rig(context, job, recorder ? recorder->manifest().rig : job.rig, object, seed);
+  if (!recorder) recorder.emplace(create_session(context, job, rig));
   const acquisition::SessionManifest& manifest = recorder->manifest();
   for (const std::string& note : recorder->notes()) context.log->warn("{}", note);
 
@@ -224,30 +264,7 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
     acquisition::replay_session(acquisition::read_session(job.folder), replay);
   }
 
-  const std::chrono::milliseconds timeout = description.camera.timeout;
-  const Capture captured =
-      stereo ? capture(context, job, *recorder,
-                       sim::camera_role | sim::right_camera_role | sim::turntable_role |
-                           (description.projector ? sim::projector_role : 0u),
-                       stereo_rig->left_frames, stereo_rig->right_frames,
-                       [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
-                         acquisition::StereoScanDevices devices{*station.camera,  *station.right_camera,
-                                                                station.projector.get(), *station.turntable,
-                                                                *station.clock,   timeout};
-                         return acquisition::record_stereo_session(devices, *recorder, on_step,
-                                                                   job.stop_after.value_or(0), stop);
-                       },
-                       feed)
-             : capture(context, job, *recorder, sim::camera_role | sim::laser_role | sim::turntable_role,
-                       laser_rig->frames, {},
-                       [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
-                         acquisition::TurntableScanDevices devices{*station.camera, {}, *station.turntable,
-                                                                   *station.clock, timeout};
-                         for (auto& laser : station.lasers) devices.lasers.push_back(laser.get());
-                         return acquisition::record_turntable_session(devices, *recorder, on_step,
-                                                                      job.stop_after.value_or(0), stop);
-                       },
-                       feed);
+  const Capture captured = capture(context, job, *recorder, rig, feed);
   const acquisition::RecordingOutcome& outcome = captured.outcome;
 
   StageTimer process(context.report, "process");

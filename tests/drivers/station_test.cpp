@@ -75,7 +75,7 @@ TEST(OpenStation, SimulatedStationScansSettledPairsAndEndsSafe) {
 TEST(StationDescription, StereoStationNamesASecondCameraAndAProjector) {
   const StationDescription d = read_station(stations() / "sim-stereo.toml");
   ASSERT_TRUE(d.right_camera && d.projector);
-  EXPECT_EQ(d.right_camera->format.size.width, 320);
+  EXPECT_EQ(d.right_camera->format.size.width, 640);
   EXPECT_EQ(d.projector->backend, "sim");
   EXPECT_FALSE(read_station(stations() / "sim.toml").right_camera) << "a laser station has none";
   test::ScratchFolder folder;
@@ -100,7 +100,7 @@ TEST(OpenStation, StereoRolesOpenAsDevices) {
   const Timestamp lit = station->projector->set(true);
   const SettledFrame frame = grab_settled(*station->right_camera, *station->clock, lit, 1000ms);
   EXPECT_TRUE(station->sim_chip->level_at(line, frame.frame.exposure_start));
-  EXPECT_EQ(frame.frame.image.cols, 320);
+  EXPECT_EQ(frame.frame.image.cols, 640);
   station->make_safe();
   EXPECT_FALSE(station->projector->is_on());
   test::expect_error<DeviceError>([&] { station->projector->set(true); }, {"held off by the safe state"});
