@@ -134,6 +134,13 @@ void OpenStation::make_safe() {
       log->error("safe state: laser {}: {}", laser->describe(), e.what());
     }
   }
+  if (projector) {
+    try {
+      projector->shut_down();
+    } catch (const std::exception& e) {
+      log->error("safe state: projector {}: {}", projector->describe(), e.what());
+    }
+  }
   if (turntable) {
     try {
       turntable->shut_down();
@@ -146,13 +153,6 @@ void OpenStation::make_safe() {
       usb->shut_down();
     } catch (const std::exception& e) {
       log->error("safe state: USB board: {}", e.what());
-    }
-  }
-  if (projector) {
-    try {
-      projector->shut_down();
-    } catch (const std::exception& e) {
-      log->error("safe state: projector {}: {}", projector->describe(), e.what());
     }
   }
   if (camera) camera->restore_controls();

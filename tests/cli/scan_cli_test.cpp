@@ -296,11 +296,9 @@ TEST(ScanCli, UsbBoardStationScansToo) {
   EXPECT_GT(report["points"].get<int>(), 150);
 }
 
-TEST(ScanCli, StereoRigAndUnknownObjectsAreRefusedClearly) {
+// (The stereo rig's bad input: tests/cli/stereo_scan_cli_test.cpp.)
+TEST(ScanCli, UnknownObjectsAndMissingSessionsAreRefusedClearly) {
   ScratchFolder dir;
-  const Outcome stereo = scanstation("scan --rig stereo -o " + (dir / "s").string());
-  EXPECT_EQ(stereo.exit_code, 1);
-  EXPECT_THAT(stereo.err, testing::HasSubstr("--rig stereo: not yet supported"));
   const Outcome unknown = scanstation("scan --object teapot -o " + (dir / "t").string());
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_THAT(unknown.err, testing::HasSubstr("--object 'teapot': neither a built-in object"));
