@@ -20,7 +20,7 @@ CalibrationView view_of(const std::vector<CapturedFrame>& frames, double angle_d
 std::vector<CalibrationView> capture_board_views(TurntableScanDevices& devices, int count, const PlaceBoard& place,
                                                  bool lasers, const ProgressCallback& progress) {
   if (count < 1) throw InvalidInput("calibration capture: at least one board placement");
-  CameraStreaming streaming(devices.camera);
+  const StreamingCamera streaming(devices.camera);
   std::vector<CalibrationView> views;
   for (int i = 0; i < count; ++i) {
     place(i, count);
@@ -35,7 +35,7 @@ std::vector<CalibrationView> capture_turntable_views(TurntableScanDevices& devic
                                                      const ProgressCallback& progress) {
   if (angles_deg.empty()) throw InvalidInput("calibration capture: at least one turntable angle");
   const double start = devices.turntable.angle();
-  CameraStreaming streaming(devices.camera);
+  const StreamingCamera streaming(devices.camera);
   place(0, 1);
   const drivers::Timestamp placed = devices.clock.now();
   std::vector<CalibrationView> views;

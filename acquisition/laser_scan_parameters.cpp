@@ -1,5 +1,6 @@
 #include "acquisition/laser_scan_parameters.h"
 
+#include "acquisition/json_key.h"
 #include "core/errors.h"
 
 #include <cmath>
@@ -10,21 +11,6 @@ namespace scanstation::acquisition {
 namespace {
 
 using nlohmann::json;
-
-// Reads one key into `target` when present; `valid` judges the value read.
-template <typename T, typename Valid>
-void read_key(const json& object, const char* key, const std::string& where, T& target, Valid valid,
-              const char* expected, std::vector<std::string>* missing) {
-  const auto it = object.find(key);
-  if (it == object.end()) {
-    if (missing) missing->push_back(where + "." + key);
-    return;
-  }
-  const bool right_type = std::is_integral_v<T> ? it->is_number_integer() : it->is_number();
-  if (!right_type || !valid(it->template get<T>()))
-    throw InvalidInput(where + "." + key + ": expected " + expected + ", got " + it->dump());
-  target = it->template get<T>();
-}
 
 bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0; }
 

@@ -29,8 +29,10 @@ json vector_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v
 
 double seconds_of(drivers::Timestamp t) { return drivers::to_seconds(t); }
 
-json frame_json(const CapturedFrame& f, const std::string& file) {
-  return {{"file", file},
+constexpr const char* kCameraNames[] = {"left", "right"};
+
+json frame_json(const CapturedFrame& f, const std::string& file, bool stereo) {
+  json frame = {{"file", file},
           {"laser", f.laser ? json(*f.laser) : json(nullptr)},
           {"sequence", f.frame.sequence},
           {"timestamp_s", seconds_of(f.frame.timestamp)},
@@ -38,6 +40,11 @@ json frame_json(const CapturedFrame& f, const std::string& file) {
           {"settled_s", seconds_of(f.settled)},
           {"discarded", f.discarded},
           {"dropped_before", f.frame.dropped_before}};
+  if (stereo) {
+    frame["camera"] = kCameraNames[f.camera == 1];
+    frame["projector"] = f.projector;
+  }
+  return frame;
 }
 
 std::string os_error(const std::string& what, const fs::path& path) {
@@ -100,6 +107,19 @@ void read_geometry(const json& manifest, const std::string& where, SessionConten
     throw InvalidInput(where + ": geometry.camera does not match geometry_digest.camera: the camera calibration was "
                        "changed after the scan; restore it, or replay with another calibration on purpose");
   }
+  if (const json* right = find(*geometry, "right_camera")) {
+    g.right_camera = pinhole_camera_from_json(*right, where + ": geometry.right_camera");
+    const json* right_digest = digests ? find(*digests, "right_camera") : nullptr;
+    if (!right_digest)
+      contents.problems.push_back(where + ": missing field \"geometry_digest.right_camera\": the right camera cannot "
+                                  "be checked");
+    else if (*right_digest != json_digest(*right))
+      throw InvalidInput(where + ": geometry.right_camera does not match geometry_digest.right_camera: the camera "
+                         "calibration was changed after the scan; restore it, or replay with another calibration on "
+                         "purpose");
+  } else if (contents.manifest.rig == "stereo") {
+    throw InvalidInput(where + ": missing field \"geometry.right_camera\": a stereo session needs both cameras");
+  }
   const json* lasers = find(*geometry, "lasers");
   if (!lasers || !lasers->is_array()) throw InvalidInput(where + ": missing field \"geometry.lasers\" (an array)");
   const json* laser_digests = digests ? find(*digests, "lasers") : nullptr;
@@ -157,8 +177,8 @@ void read_manifest(const fs::path& folder, SessionContents& contents) {
   const json* rig = find(manifest, "rig");
   if (!rig || !rig->is_string()) throw InvalidInput(where + ": missing field \"rig\" (a string)");
   m.rig = *rig;
-  if (m.rig != "turntable")
-    throw InvalidInput(where + ": rig \"" + m.rig + "\": only turntable sessions can be replayed");
+  if (m.rig != "turntable" && m.rig != "stereo")
+    throw InvalidInput(where + ": rig \"" + m.rig + "\": expected \"turntable\" or \"stereo\"");
   const json* steps = find(manifest, "steps");
   if (!steps || !steps->is_number_integer() || steps->get<long long>() < 1 || steps->get<long long>() > 1 << 20)
     throw InvalidInput(where + ": missing field \"steps\" (a positive integer)");
@@ -166,7 +186,11 @@ void read_manifest(const fs::path& folder, SessionContents& contents) {
   read_geometry(manifest, where, contents);
   if (const json* parameters = find(manifest, "parameters")) {
     std::vector<std::string> missing;
-    m.parameters = laser_scan_parameters_from_json(*parameters, where + ": parameters", {}, &missing);
+    if (m.rig == "stereo")
+      m.stereo_parameters = stereo_scan_parameters_from_json(*parameters, where + ": parameters",
+                                                             stereo_scan_defaults(), &missing);
+    else
+      m.parameters = laser_scan_parameters_from_json(*parameters, where + ": parameters", {}, &missing);
     for (const std::string& field : missing)
       contents.problems.push_back(where + ": missing field \"" + field.substr(where.size() + 2) +
                                   "\": the default is used");
@@ -207,7 +231,16 @@ std::optional<SessionStep> parse_step(const json& line, const std::string& where
     const json* laser = find(f, "laser");
     if (!file || !file->is_string() || !laser || !(laser->is_null() || laser->is_number_integer()))
       return problem = where + ": frames[" + std::to_string(i) + "]: expected \"file\" and \"laser\"", std::nullopt;
-    s.frames.push_back({*file, laser->is_null() ? std::nullopt : std::optional<int>(laser->get<int>())});
+    SessionFrame frame{*file, laser->is_null() ? std::nullopt : std::optional<int>(laser->get<int>())};
+    if (const json* camera = find(f, "camera")) {
+      if (*camera != kCameraNames[0] && *camera != kCameraNames[1])
+        return problem = where + ": frames[" + std::to_string(i) + "].camera: expected \"left\" or \"right\"",
+               std::nullopt;
+      frame.camera = *camera == kCameraNames[1];
+    }
+    if (const json* projector = find(f, "projector"); projector && projector->is_boolean())
+      frame.projector = *projector;
+    s.frames.push_back(std::move(frame));
     if (const json* t = find(f, "timestamp_s"); t && t->is_number()) last = std::max(last, t->get<double>());
   }
   s.seconds = last - first;
@@ -261,10 +294,19 @@ std::string frame_file_name(int step, std::optional<int> laser) {
   return name;
 }
 
+std::string stereo_frame_file_name(int step, int camera, bool projector) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frames/step_%04d_%s%s.png", step, kCameraNames[camera == 1],
+                projector ? "_dots" : "");
+  return name;
+}
+
 json to_json(const SessionManifest& m) {
   const json geometry = to_json(m.geometry);
   json laser_digests = json::array();
   for (const json& laser : geometry["lasers"]) laser_digests.push_back(json_digest(laser));
+  json digests = {{"camera", json_digest(geometry["camera"])}, {"lasers", laser_digests}};
+  if (geometry.contains("right_camera")) digests["right_camera"] = json_digest(geometry["right_camera"]);
   return {{"format", kFormat},
           {"version", kFormatVersion},
           {"software", {{"name", "scanstation"}, {"version", m.software_version}}},
@@ -272,8 +314,8 @@ json to_json(const SessionManifest& m) {
           {"steps", m.steps},
           {"station", m.station},
           {"geometry", geometry},
-          {"geometry_digest", {{"camera", json_digest(geometry["camera"])}, {"lasers", laser_digests}}},
-          {"parameters", to_json(m.parameters)},
+          {"geometry_digest", digests},
+          {"parameters", m.rig == "stereo" ? to_json(m.stereo_parameters) : to_json(m.parameters)},
           {"object",
            {{"name", m.object.name},
             {"mesh_file", m.object.mesh_file},
@@ -299,6 +341,14 @@ json station_json(const drivers::StationDescription& d) {
   // with it (acquisition/scan_calibration.h, replay_geometry).
   const StationFingerprint fingerprint = station_fingerprint(d);
   station["fingerprint"] = {{"hash", fingerprint.hash}, {"devices", fingerprint.devices}};
+  if (d.right_camera) {
+    const drivers::CameraFormat& right = d.right_camera->format;
+    station["right_camera"] = {{"backend", d.right_camera->backend},
+                               {"pixel_format", drivers::pixel_format_name(right.format)},
+                               {"width", right.size.width},
+                               {"height", right.size.height}};
+  }
+  if (d.projector) station["projector"] = d.projector->backend;
   if (!d.source.empty() && fs::exists(d.source)) station["toml"] = io::read_file(d.source);
   return station;
 }
@@ -377,14 +427,16 @@ void SessionRecorder::event(const std::string& name, const json& fields) {
 void SessionRecorder::record(const CapturedStep& step) {
   json frames = json::array();
   const std::vector<int> png_options{cv::IMWRITE_PNG_COMPRESSION, 1};
+  const bool stereo = manifest_.rig == "stereo";
   for (const CapturedFrame& frame : step.frames) {
-    const std::string file = frame_file_name(step.step, frame.laser);
+    const std::string file =
+        stereo ? stereo_frame_file_name(step.step, frame.camera, frame.projector) : frame_file_name(step.step, frame.laser);
     std::vector<unsigned char> png;
     if (!cv::imencode(".png", frame.frame.image, png, png_options))
       throw IoError("cannot encode " + (folder_ / file).string() + " as PNG");
     io::write_file_atomically(folder_ / file, {reinterpret_cast<const char*>(png.data()), png.size()},
                               io::Overwrite::replace);
-    frames.push_back(frame_json(frame, file));
+    frames.push_back(frame_json(frame, file, stereo));
   }
   append({{"event", "step"},
           {"step", step.step},

@@ -4,7 +4,10 @@
 //   SESSION/manifest.json   rig, station, geometry (+ digests), parameters,
 //                           object, software version; written once, atomically
 //   SESSION/frames/         step_0007_off.png, step_0007_laser0.png, ...
-//                           (lossless PNG, 8 or 16 bit as captured)
+//                           (lossless PNG, 8 or 16 bit as captured); a
+//                           stereo rig's step_0007_left_dots.png,
+//                           step_0007_right_dots.png (projector on) and
+//                           step_0007_left.png (off: the colours)
 //   SESSION/journal.jsonl   one JSON event per line: scan_started, step (angle,
 //                           timestamps, exposure, gain, the frames and their
 //                           laser), scan_stopped, scan_finished, scan_failed;
@@ -17,6 +20,7 @@
 #pragma once
 
 #include "acquisition/laser_scan_parameters.h"
+#include "acquisition/stereo_scan_parameters.h"
 #include "acquisition/turntable_geometry.h"
 #include "acquisition/turntable_scan.h"
 #include "core/io/file_access.h"
@@ -49,19 +53,23 @@ struct SessionObject {
   ObjectPlacement placement;
 };
 
+/// rig  "turntable" (one camera, line lasers) or "stereo" (two cameras,
+///      geometry.right_camera, an optional projector); the manifest's
+///      "parameters" are `parameters` or `stereo_parameters` accordingly
 struct SessionManifest {
   std::string rig = "turntable";
   int steps = 0;                   // steps per turn planned
   nlohmann::json station;          // the station description as opened
   TurntableGeometry geometry;
   LaserScanParameters parameters;
+  StereoScanParameters stereo_parameters = stereo_scan_defaults();
   SessionObject object;
   std::string software_version;
 };
 
 /// The manifest document, with "format": "scanstation-session", "version": 1
-/// and "geometry_digest": {"camera": D, "lasers": [D, ...]} (json_digest of
-/// each part as written).
+/// and "geometry_digest": {"camera": D, ["right_camera": D,] "lasers": [D, ...]}
+/// (json_digest of each part as written).
 nlohmann::json to_json(const SessionManifest& manifest);
 
 /// A session being recorded. Frames go through io::write_file_atomically
@@ -108,10 +116,13 @@ class SessionRecorder {
 };
 
 /// A frame of a recorded step: file relative to the session folder and the
-/// laser lit (none for the laser-off frame).
+/// laser lit (none for the laser-off frame); of a stereo step, the camera
+/// (0 left, 1 right) and whether the projector was lit.
 struct SessionFrame {
   std::string file;
   std::optional<int> laser;
+  int camera = 0;
+  bool projector = false;
 };
 
 struct SessionStep {
@@ -152,5 +163,9 @@ nlohmann::json station_json(const drivers::StationDescription& station);
 
 /// "frames/step_0007_off.png", "frames/step_0007_laser1.png".
 std::string frame_file_name(int step, std::optional<int> laser);
+
+/// A stereo step's frame: "frames/step_0007_left_dots.png" (camera 0,
+/// projector on), "frames/step_0007_right.png" (camera 1, projector off).
+std::string stereo_frame_file_name(int step, int camera, bool projector);
 
 }  // namespace scanstation::acquisition

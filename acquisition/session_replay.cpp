@@ -1,6 +1,7 @@
 #include "acquisition/session_replay.h"
 
 #include "acquisition/outlier_removal.h"
+#include "acquisition/stereo_step_points.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
 #include "core/version.h"
@@ -54,16 +55,53 @@ std::optional<StepFrames> load_step(const SessionContents& session, const Sessio
   return frames;
 }
 
+// The pair and colour frame of a stereo step, with a problem noted for each
+// that cannot be used. No pair → no frames at all.
+std::optional<StereoStepFrames> load_stereo_step(const SessionContents& session, const SessionStep& step,
+                                                 std::vector<std::string>& problems) {
+  const StereoFrameRoles roles = stereo_frame_roles(step.frames);
+  const std::string step_name = "step " + std::to_string(step.step);
+  const std::string line = " (journal line " + std::to_string(step.journal_line) + ")";
+  if (roles.left < 0 || roles.right < 0) {
+    problems.push_back("journal line " + std::to_string(step.journal_line) + ": " + step_name +
+                       " lacks the " + (roles.left < 0 ? "left" : "right") + " frame of its pair: step skipped");
+    return std::nullopt;
+  }
+  // A frame, or empty with a problem noted saying what happens instead.
+  const auto load = [&](int index, const std::string& consequence) {
+    const fs::path path = session.folder / step.frames[static_cast<std::size_t>(index)].file;
+    cv::Mat frame = fs::exists(path) ? read_session_frame(path) : cv::Mat();
+    if (frame.empty())
+      problems.push_back(path.string() + ": " + (fs::exists(path) ? "unreadable" : "missing") + line + ": " +
+                         consequence);
+    return frame;
+  };
+  StereoStepFrames frames;
+  frames.angle_deg = step.angle_deg;
+  frames.left = load(roles.left, step_name + " skipped");
+  if (frames.left.empty()) return std::nullopt;
+  frames.right = load(roles.right, step_name + " skipped");
+  if (frames.right.empty()) return std::nullopt;
+  if (roles.colour >= 0) frames.colour = load(roles.colour, step_name + " coloured from its pair");
+  return frames;
+}
+
 }  // namespace
 
 cv::Mat read_session_frame(const fs::path& file) { return cv::imread(file.string(), cv::IMREAD_UNCHANGED); }
 
 ScanResult replay_session(const SessionContents& session, const ReplayOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const SessionManifest& manifest = session.manifest;
+  const bool stereo = manifest.rig == "stereo";
+  if (stereo && options.parameters)
+    throw InvalidInput((session.folder / "manifest.json").string() +
+                       ": a stereo session: the laser processing parameters do not apply to it (it is replayed "
+                       "with its recorded stereo parameters)");
   ScanResult result;
   result.problems = session.problems;
-  result.parameters = options.parameters.value_or(session.manifest.parameters);
-  result.geometry = options.geometry.value_or(session.manifest.geometry);
+  result.parameters = options.parameters.value_or(manifest.parameters);
+  result.geometry = options.geometry.value_or(manifest.geometry);
   result.recorded_geometry = !options.geometry;
   const TurntableGeometry& geometry = result.geometry;
   std::vector<int> lasers = session.lasers;
@@ -71,13 +109,24 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
     lasers.clear();
     for (std::size_t i = 0; i < geometry.lasers.size(); ++i) lasers.push_back(static_cast<int>(i));
   }
-  result.by_laser.resize(geometry.lasers.size());
+  std::optional<StereoScanSetup> stereo_setup;
+  if (stereo) stereo_setup = stereo_scan_setup(geometry, manifest.stereo_parameters);
+  result.by_laser.resize(stereo ? 1 : geometry.lasers.size());
   for (std::size_t s = 0; s < session.steps.size(); ++s) {
     const SessionStep& step = session.steps[s];
     result.capture_seconds += step.seconds;
     std::vector<LaserScanPoints> clouds;
-    if (const auto frames = load_step(session, step, lasers, result.problems)) {
+    bool used = false;
+    if (stereo) {
+      if (const auto frames = load_stereo_step(session, step, result.problems)) {
+        clouds = {stereo_step_points(*frames, *stereo_setup)};
+        used = true;
+      }
+    } else if (const auto frames = load_step(session, step, lasers, result.problems)) {
       clouds = step_points(*frames, geometry, result.parameters);
+      used = true;
+    }
+    if (used) {
       for (std::size_t l = 0; l < clouds.size(); ++l) {
         append_points(result.points, clouds[l]);
         append_points(result.by_laser[l], clouds[l]);
@@ -89,11 +138,13 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   }
   if (result.by_laser.size() == 2)
     result.laser_agreement = check_laser_agreement(result.by_laser[0].cloud.positions,
-                                                   result.by_laser[1].cloud.positions, session.manifest.steps);
-  if (result.parameters.outlier_radius > 0)
-    result.outliers_removed =
-        remove_isolated_points(result.points, result.parameters.outlier_radius, result.parameters.outlier_neighbours);
-  result.points.cloud.positions = own_coordinates(result.points.cloud.positions, session.manifest.object.placement);
+                                                   result.by_laser[1].cloud.positions, manifest.steps);
+  const double outlier_radius = stereo ? manifest.stereo_parameters.outlier_radius : result.parameters.outlier_radius;
+  const int outlier_neighbours =
+      stereo ? manifest.stereo_parameters.outlier_neighbours : result.parameters.outlier_neighbours;
+  if (outlier_radius > 0)
+    result.outliers_removed = remove_isolated_points(result.points, outlier_radius, outlier_neighbours);
+  result.points.cloud.positions = own_coordinates(result.points.cloud.positions, manifest.object.placement);
   result.process_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -127,7 +178,7 @@ json write_scan_results(const fs::path& folder, const SessionContents& session, 
       {"points", result.points.cloud.size()},
       {"points_per_laser", per_laser},
       {"outliers_removed", result.outliers_removed},
-      {"parameters", to_json(result.parameters)},
+      {"parameters", m.rig == "stereo" ? to_json(m.stereo_parameters) : to_json(result.parameters)},
       {"problems", result.problems},
       {"laser_agreement", result.laser_agreement ? to_json(*result.laser_agreement) : json(nullptr)},
       {"seconds", {{"capture", result.capture_seconds}, {"processing", result.process_seconds}}},

@@ -175,12 +175,13 @@ void disparity_to_points(const StereoStation& station, const cv::Mat& disparity,
   const cv::Mat span = disparity_span(disparity);
   const cv::Mat texture = horizontal_texture(rectified_left, std::max(3, options.matcher.block_size));
 
+  if (options.pixel_step < 1) throw InvalidInput("stereo: the pixel step must be at least 1");
   std::vector<Eigen::Vector3d> found;
   std::vector<std::array<std::uint8_t, 3>> colours;
   std::vector<double> confidence;
-  for (int y = 0; y < disparity.rows; ++y) {
+  for (int y = 0; y < disparity.rows; y += options.pixel_step) {
     const float* d = disparity.ptr<float>(y);
-    for (int x = 0; x < disparity.cols; ++x) {
+    for (int x = 0; x < disparity.cols; x += options.pixel_step) {
       if (!(d[x] > 0)) continue;  // negative: unmatched; 0: at infinity
       const float range = span.at<float>(y, x);
       if (options.discontinuity > 0 && range > options.discontinuity) continue;

@@ -79,6 +79,9 @@ StereoOptions reconstruction_matcher_options();
 ///                  dark background onto which SGBM spreads the foreground: dropped
 /// texture_scale    mean horizontal gradient at which the texture part of
 ///                  the confidence is ½
+/// pixel_step       reproject every n-th pixel of every n-th row only: a
+///                  sampling as even as the turntable steps are apart, and
+///                  as sparse as the reconstruction downstream can take
 struct StereoReconstructionOptions {
   StereoOptions matcher = reconstruction_matcher_options();
   double minimum_height = 0.5;
@@ -87,6 +90,7 @@ struct StereoReconstructionOptions {
   double discontinuity = 1.5;
   double minimum_texture = 2.0;
   double texture_scale = 6.0;
+  int pixel_step = 1;
 };
 
 /// The points of a rectified disparity map (compute_disparity's convention:

@@ -6,10 +6,12 @@
 
 namespace scanstation::acquisition {
 
-TurntableGeometry simulator_truth(const PinholeCamera& camera, std::vector<LaserPlane> planes) {
+TurntableGeometry simulator_truth(const PinholeCamera& camera, std::vector<LaserPlane> planes,
+                                  std::optional<PinholeCamera> right_camera) {
   TurntableGeometry geometry;
   geometry.camera = camera;
   geometry.lasers = std::move(planes);
+  geometry.right_camera = std::move(right_camera);
   geometry.source = "simulator truth";
   return geometry;
 }
@@ -19,6 +21,7 @@ nlohmann::json to_json(const TurntableGeometry& geometry) {
   for (const LaserPlane& plane : geometry.lasers) lasers.push_back(scanstation::to_json(plane));
   nlohmann::json document = {
       {"source", geometry.source}, {"camera", scanstation::to_json(geometry.camera)}, {"lasers", lasers}};
+  if (geometry.right_camera) document["right_camera"] = scanstation::to_json(*geometry.right_camera);
   if (!geometry.calibration.is_null()) document["calibration"] = geometry.calibration;
   return document;
 }

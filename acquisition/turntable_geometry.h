@@ -7,30 +7,36 @@
 #include "core/station_geometry.h"
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace scanstation::acquisition {
 
-/// camera  the calibrated camera (intrinsics, distortion, pose)
+/// camera  the calibrated camera (intrinsics, distortion, pose); a stereo
+///         rig's left camera
+/// right_camera  a stereo rig's right camera (none for a laser rig)
 /// lasers  light plane of laser i at index i
 /// source  where it came from ("simulator truth", a calibration file, ...)
 /// calibration  what identifies the calibration file it came from (its
 ///         station fingerprint, dates; scan_calibration.h), null otherwise
 struct TurntableGeometry {
   PinholeCamera camera;
+  std::optional<PinholeCamera> right_camera;
   std::vector<LaserPlane> lasers;
   std::string source;
   nlohmann::json calibration;
 };
 
 /// A geometry known exactly, the simulator's truth: `camera` and the light
-/// `planes` (laser i at index i), source "simulator truth", no calibration.
-TurntableGeometry simulator_truth(const PinholeCamera& camera, std::vector<LaserPlane> planes);
+/// `planes` (laser i at index i) of a laser rig, or with `right_camera` the
+/// cameras of a stereo rig; source "simulator truth", no calibration.
+TurntableGeometry simulator_truth(const PinholeCamera& camera, std::vector<LaserPlane> planes,
+                                  std::optional<PinholeCamera> right_camera = std::nullopt);
 
-/// {"source", "camera": {...}, "lasers": [{...}, ...], "calibration": {...}}
-/// with the keys of core/io/station_geometry_json.h ("calibration" only when
-/// not null).
+/// {"source", "camera": {...}, "right_camera": {...}, "lasers": [{...}, ...],
+/// "calibration": {...}} with the keys of core/io/station_geometry_json.h
+/// ("right_camera" only for a stereo rig, "calibration" only when not null).
 nlohmann::json to_json(const TurntableGeometry& geometry);
 
 /// A digest (FNV-1a, 16 hex digits) of a JSON value's compact text: recorded

@@ -30,12 +30,15 @@ struct TurntableScanDevices {
 
 /// One accepted frame: `laser` is the laser lit (none for the laser-off frame),
 /// `settled` the moment the state it shows had settled, `discarded` the stale
-/// frames the gate threw away before it.
+/// frames the gate threw away before it; for a stereo rig, `camera` (0 the
+/// left camera, 1 the right one) and whether the projector was lit.
 struct CapturedFrame {
   drivers::Frame frame;
   std::optional<int> laser;
   drivers::Timestamp settled{0};
   std::size_t discarded = 0;
+  int camera = 0;
+  bool projector = false;
 };
 
 /// One step: index, the table's angle (degrees, exact in motor steps), when the
@@ -47,18 +50,6 @@ struct CapturedStep {
   drivers::Timestamp move_start{0}, move_settled{0};
   std::int64_t exposure = 0, gain = 0;
   std::vector<CapturedFrame> frames;
-};
-
-/// Keeps the camera streaming for a scope, stopping it however the scope ends.
-class CameraStreaming {
- public:
-  explicit CameraStreaming(drivers::Camera& camera);
-  ~CameraStreaming();
-  CameraStreaming(const CameraStreaming&) = delete;
-  CameraStreaming& operator=(const CameraStreaming&) = delete;
-
- private:
-  drivers::Camera& camera_;
 };
 
 /// The frames of one pose of the table and the scene, the camera streaming:
@@ -77,5 +68,38 @@ using StepSink = std::function<bool(const CapturedStep&)>;
 /// camera for the duration; lasers are left off. Returns the number of steps
 /// captured. Device errors propagate (DeviceError, DeviceTimeout, DeviceGone).
 int scan_turntable(TurntableScanDevices& devices, int steps, int first_step, const StepSink& sink);
+
+// ---- shared by the rigs (stereo_scan.h) ------------------------------------
+
+/// Keeps a camera streaming for a scope, stopping it however the scope ends.
+class StreamingCamera {
+ public:
+  explicit StreamingCamera(drivers::Camera& camera);
+  ~StreamingCamera();
+  StreamingCamera(const StreamingCamera&) = delete;
+  StreamingCamera& operator=(const StreamingCamera&) = delete;
+
+ private:
+  drivers::Camera& camera_;
+};
+
+/// Turns the table by `move_deg` and starts the step's record: index, move
+/// start and settle, the table's angle, `camera`'s exposure and gain.
+CapturedStep turn_for_step(drivers::Turntable& turntable, drivers::Clock& clock, drivers::Camera& camera, int step,
+                           double move_deg);
+
+/// The first frame of `camera` exposed after `settled` (drivers/frame_gate.h).
+CapturedFrame grab_frame(drivers::Camera& camera, drivers::Clock& clock, drivers::Timestamp settled,
+                         std::chrono::milliseconds timeout);
+
+/// Takes step `step` after a move of `move_deg` degrees.
+using StepCapture = std::function<CapturedStep(int step, double move_deg)>;
+
+/// The step loop of every turntable rig: steps `first_step` .. `steps` − 1,
+/// each at its absolute place k·360°/steps on the turn, turning forward only
+/// (so a resumed scan reaches the very motor positions an uninterrupted one
+/// did), each handed to `sink` (false stops). Returns the steps captured.
+/// Throws InvalidInput for steps < 1 or a first step outside 0..steps.
+int turn_through_steps(int steps, int first_step, const StepCapture& capture, const StepSink& sink);
 
 }  // namespace scanstation::acquisition

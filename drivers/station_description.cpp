@@ -135,7 +135,7 @@ CameraRole read_camera(const Section& s) {
   return camera;
 }
 
-LaserRole read_laser(const Section& s, const std::string& chip) {
+LaserRole read_light(const Section& s, const std::string& chip) {
   s.only({"backend", "chip", "line", "active_low", "index", "settle_ms"});
   LaserRole laser;
   laser.backend = s.text("backend", "sim", {"sim", "gpio", "usb"});
@@ -143,7 +143,7 @@ LaserRole read_laser(const Section& s, const std::string& chip) {
   laser.usb_index = int(s.integer("index", 0, 0, 7));
   if (laser.backend == "gpio") {
     const auto line = s.line("line", s.text("chip", chip));
-    if (!line) s.fail(s.raw(), s.name("line") + ": a gpio laser needs a line (offset or name)");
+    if (!line) s.fail(s.raw(), s.name("line") + ": a gpio light needs a line (offset or name)");
     laser.line = *line;
     laser.line.active_low = s.flag("active_low", laser.line.active_low);
   }
@@ -181,12 +181,23 @@ TurntableRole read_turntable(const Section& s, const std::string& default_chip) 
 StationDescription StationDescription::simulated() const {
   StationDescription sim = *this;
   sim.camera.backend = "sim";
+  if (sim.right_camera) sim.right_camera->backend = "sim";
   for (LaserRole& laser : sim.lasers)
     if (laser.backend == "gpio") laser.backend = "sim";
+  if (sim.projector && sim.projector->backend == "gpio") sim.projector->backend = "sim";
   if (sim.turntable.backend == "gpio") sim.turntable.backend = "sim";
   // "usb" roles stay "usb", served by a simulated board speaking the same protocol.
   sim.usb_simulated = true;
   return sim;
+}
+
+StationDescription simulated_stereo_station() {
+  StationDescription station;
+  station.name = "sim-stereo";
+  station.right_camera = CameraRole{};
+  station.lasers.clear();
+  station.projector = LaserRole{};
+  return station;
 }
 
 StationDescription read_station(const std::filesystem::path& file) {
@@ -198,7 +209,8 @@ StationDescription read_station(const std::filesystem::path& file) {
     throw FormatError(FileLocation::at_line(file, e.source().begin.line), std::string(e.description()));
   }
   const Section top(root, "", file);
-  top.only({"name", "gpio_chip", "consumer", "calibration", "camera", "laser", "turntable", "usb", "sim"});
+  top.only({"name", "gpio_chip", "consumer", "calibration", "camera", "right_camera", "laser", "projector", "turntable",
+            "usb", "sim"});
   StationDescription station;
   station.source = file;
   station.name = top.text("name", file.stem().string());
@@ -214,9 +226,12 @@ StationDescription read_station(const std::filesystem::path& file) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table* t = (*list)[i].as_table();
       if (!t) top.fail((*list)[i], "laser[" + std::to_string(i) + "]: expected a table");
-      station.lasers.push_back(read_laser(Section(*t, "laser[" + std::to_string(i) + "]", file), chip));
+      station.lasers.push_back(read_light(Section(*t, "laser[" + std::to_string(i) + "]", file), chip));
     }
   }
+  if (const toml::table* t = top.table("right_camera"))
+    station.right_camera = read_camera(Section(*t, "right_camera", file));
+  if (const toml::table* t = top.table("projector")) station.projector = read_light(Section(*t, "projector", file), chip);
   if (const toml::table* t = top.table("turntable")) station.turntable = read_turntable(Section(*t, "turntable", file), chip);
   if (const toml::table* t = top.table("usb")) {
     const Section usb(*t, "usb", file);

@@ -1,5 +1,7 @@
 // A station description file (TOML) names which device implements each role:
-// the camera, the lasers, the turntable, and the USB board when one is used.
+// the camera, the lasers, the turntable, and the USB board when one is used;
+// a stereo station adds a second camera and, optionally, a random-dot
+// projector switched like a laser (any digital output).
 // See stations/sim.toml and stations/example-real.toml for commented examples.
 #pragma once
 
@@ -26,6 +28,7 @@ struct CameraRole {
   double sim_frame_rate = 30.0;
 };
 
+/// A light on a digital output: a line laser, or a stereo rig's projector.
 struct LaserRole {
   std::string backend = "sim";  // "sim", "gpio" or "usb"
   LineAddress line;             // gpio
@@ -47,8 +50,10 @@ struct StationDescription {
   // description's folder), which `scan` uses by default; "" when none is named.
   std::filesystem::path calibration;
   std::string consumer = "scanstation";  // GPIO consumer label
-  CameraRole camera;
+  CameraRole camera;                       // the stereo rig's left camera
+  std::optional<CameraRole> right_camera;  // a stereo rig's right camera ([right_camera])
   std::vector<LaserRole> lasers{LaserRole{}};
+  std::optional<LaserRole> projector;      // a stereo rig's random-dot projector ([projector])
   TurntableRole turntable;
   UsbDeviceId usb;
   std::chrono::milliseconds usb_timeout{500};
@@ -60,6 +65,11 @@ struct StationDescription {
   /// Every role's backend replaced by its simulated counterpart ("usb" roles by a simulated board).
   StationDescription simulated() const;
 };
+
+/// The built-in simulated stereo station: two simulated cameras, the
+/// projector on line PROJECTOR of the simulated chip, the simulated
+/// turntable, no laser.
+StationDescription simulated_stereo_station();
 
 /// Reads and validates a description; errors name the file, line and field
 /// (FormatError) and list the accepted values.

@@ -23,13 +23,17 @@ std::vector<LaserPlane> light_planes(const TurntableLaserRig& rig) {
   return planes;
 }
 
-SimulatedTurntable simulated_turntable(ScanObject object, const drivers::StationDescription& station,
-                                       std::uint64_t seed) {
+void check_fits_rig(const ScanObject& object) {
   const double height = object.on_platter.vertices.positions.col(2).maxCoeff();
   // A small tolerance: scan_object scales to the height in floating point.
   if (height > kSimulatedRigHeight * (1 + 1e-9))
-    throw InvalidInput("simulated turntable: '" + object.name + "' stands " + std::to_string(height) +
+    throw InvalidInput("simulated station: '" + object.name + "' stands " + std::to_string(height) +
                        " high; the rig frames objects up to " + std::to_string(kSimulatedRigHeight));
+}
+
+SimulatedTurntable simulated_turntable(ScanObject object, const drivers::StationDescription& station,
+                                       std::uint64_t seed) {
+  check_fits_rig(object);
   SimulatedTurntable sim;
   sim.rig = station_rig(station);
   sim.renderer = std::make_shared<const SceneRenderer>(

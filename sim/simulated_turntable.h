@@ -39,6 +39,9 @@ TurntableLaserRig station_rig(const drivers::StationDescription& station);
 /// geometry a scan triangulates with; sim stops at the driver interfaces).
 std::vector<LaserPlane> light_planes(const TurntableLaserRig& rig);
 
+/// Throws InvalidInput when `object` stands taller than the simulated rigs frame.
+void check_fits_rig(const ScanObject& object);
+
 /// The station's rig (station_rig) with `object` on its platter; the object
 /// must fit the rig (scan_object places built-ins and mesh files so).
 /// Throws InvalidInput for a station with no laser or more than two, or an

@@ -16,11 +16,12 @@ PinholeCamera supersampled(const PinholeCamera& camera, int k) {
 }
 
 cv::Mat expose_supersampled(const SceneRenderer& renderer, const RenderedView& fine, const PinholeCamera& camera, int k,
-                            const std::vector<int>& lasers, std::uint64_t seed, SensorModel sensor) {
-  if (k <= 1) return renderer.expose(fine, lasers, seed, sensor);
+                            const std::vector<int>& lasers, std::uint64_t seed, SensorModel sensor,
+                            bool projector_on) {
+  if (k <= 1) return renderer.expose(fine, lasers, seed, sensor, projector_on);
   sensor.defocus_sigma *= k;
   cv::Mat small;
-  cv::resize(renderer.expose(fine, lasers, seed, sensor), small, {camera.width, camera.height}, 0, 0, cv::INTER_AREA);
+  cv::resize(renderer.expose(fine, lasers, seed, sensor, projector_on), small, {camera.width, camera.height}, 0, 0, cv::INTER_AREA);
   return small;
 }
 

@@ -18,10 +18,11 @@ PinholeCamera supersampled(const PinholeCamera& camera, int k);
 
 /// A frame of `camera`'s size from `fine`, a view cast through
 /// supersampled(camera, k): exposed (lasers, seed, sensor as
-/// SceneRenderer::expose) with the defocus blur scaled by k, so that it
+/// SceneRenderer::expose, the dot projector too) with the defocus blur scaled by k, so that it
 /// stays the lens' blur in `camera`'s pixels, then area-averaged. k = 1 is
 /// expose() itself.
 cv::Mat expose_supersampled(const SceneRenderer& renderer, const RenderedView& fine, const PinholeCamera& camera, int k,
-                            const std::vector<int>& lasers, std::uint64_t seed, SensorModel sensor = {});
+                            const std::vector<int>& lasers, std::uint64_t seed, SensorModel sensor = {},
+                            bool projector_on = true);
 
 }  // namespace scanstation::sim

@@ -1,7 +1,8 @@
-// scanstation scan: a turntable laser scan recorded into a session folder
+// scanstation scan: a turntable scan (laser or stereo rig) recorded into a session folder
 // (acquisition/session.h) with the boundary grown live, then processed into
 // points.ply, mesh.ply, smooth.ply, patches.json, preview.png and report.json.
 #include "command.h"
+#include "acquisition/session.h"
 #include "core/errors.h"
 #include "scan_job.h"
 #include "scan_parameter_options.h"
@@ -17,7 +18,9 @@ class ScanCommand final : public Command {
       : Command(parent, "scan",
                 "Scan an object on the turntable into a session folder: frames, journal, points, the closed boundary "
                 "grown live, the smooth surface") {
-    cli_->add_option("--rig", rig_, "turntable (one camera, line lasers) or stereo")
+    cli_->add_option("--rig", rig_,
+                     "turntable (one camera, line lasers) or stereo (two cameras and a random-dot projector; the "
+                     "station needs [right_camera], default: the built-in simulated stereo station)")
         ->check(CLI::IsMember({"turntable", "stereo"}))
         ->capture_default_str();
     station_.add_to(*cli_);
@@ -46,19 +49,30 @@ class ScanCommand final : public Command {
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     parameters_.add_to(*cli_);
+    cli_->add_option("--pixel-step", job_.stereo_parameters.reconstruction.pixel_step,
+                     "--rig stereo: reproject every n-th pixel of every n-th row (an even sampling, sparse enough "
+                     "for the live boundary)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
     cli_->footer("With --progress=json, every step emits a \"step\" event and a \"boundary\" event (points so far, "
                  "boundary triangles, all_on_boundary). Ctrl-C stops after the current step and still writes the "
                  "results; --resume continues.");
   }
 
   void run(CommandContext& context) override {
-    if (rig_ == "stereo")
-      throw InvalidInput("--rig stereo: not yet supported (the stereo capture pipeline is being built); use "
-                         "--rig turntable");
-    job_.station = station_.description();
+    // A resumed scan continues with the session's own rig.
+    job_.rig_given = cli_->count("--rig") > 0;
+    job_.rig = job_.resume && !job_.rig_given ? acquisition::read_session(job_.folder).manifest.rig : rig_;
+    if (job_.rig == "stereo" && parameters_.any())
+      throw InvalidInput("--rig stereo: the laser processing options (--peak-fit, --row-step, ...) do not apply");
+    if (job_.rig != "stereo" && cli_->count("--pixel-step"))
+      throw InvalidInput("--pixel-step: a stereo option; the laser rig takes --row-step");
+    job_.parameters_given = parameters_.any() || cli_->count("--pixel-step") > 0;
+    // Without --station the built-in simulated station of the rig.
+    job_.station = job_.rig == "stereo" && station_.station.empty() ? drivers::simulated_stereo_station()
+                                                                    : station_.description();
     job_.steps_given = cli_->count("--steps") > 0;
     job_.object_given = cli_->count("--object") > 0;
-    job_.parameters_given = parameters_.any();
     job_.parameters = parameters_.apply({});
     run_scan_job(context, job_);
   }

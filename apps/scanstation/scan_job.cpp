@@ -5,6 +5,7 @@
 #include "core/io/mesh_io.h"
 #include "core/version.h"
 #include "sim/scan_objects.h"
+#include "sim/simulated_stereo.h"
 #include "sim/simulated_turntable.h"
 
 #include <csignal>
@@ -22,6 +23,8 @@ SessionRecorder resume_session(CommandContext& context, const ScanJob& job) {
   if (job.steps_given && job.steps != m.steps)
     throw InvalidInput("--steps " + std::to_string(job.steps) + ": the session was planned with " +
                        std::to_string(m.steps) + " steps");
+  if (job.rig_given && job.rig != m.rig)
+    throw InvalidInput("--rig " + job.rig + ": the session was recorded with the " + m.rig + " rig");
   if (job.object_given && job.object != m.object.name)
     throw InvalidInput("--object " + job.object + ": the session scans '" + m.object.name + "'");
   if (job.parameters_given) context.log->warn("--resume keeps the session's parameters; replay to change them");
@@ -32,19 +35,141 @@ std::string recorded_object(const acquisition::SessionManifest& m) {
   return m.object.mesh_file.empty() ? m.object.name : m.object.mesh_file;
 }
 
-SessionRecorder create_session(CommandContext& context, const ScanJob& job, const sim::SimulatedTurntable& simulated) {
+// The stereo rig takes the simulator's true cameras: a stereo calibration
+// (calibrate stereo) does not place the cameras on the turntable yet.
+acquisition::TurntableGeometry stereo_geometry(const ScanJob& job, const sim::StereoRig& rig) {
+  if ((!job.calibration.empty() && job.calibration != acquisition::kSimulatorTruth) ||
+      (job.calibration.empty() && !job.station.calibration.empty()))
+    throw InvalidInput("--rig stereo: scans with the simulator's true cameras only (a stereo calibration does not "
+                       "place the cameras on the turntable yet); drop --calibration, or give --calibration " +
+                       std::string(acquisition::kSimulatorTruth));
+  return acquisition::simulator_truth(rig.left, {}, rig.right);
+}
+
+// The simulated station's rig, laser or stereo, with the object on it.
+struct SimulatedRig {
+  std::optional<sim::SimulatedTurntable> laser;
+  std::optional<sim::SimulatedStereo> stereo;
+  const sim::ScanObject& object() const { return stereo ? stereo->object : laser->object; }
+};
+
+SimulatedRig simulated_rig(CommandContext& context, const ScanJob& job, const std::string& rig_name,
+                           const std::string& object, std::uint64_t seed) {
+  SimulatedRig rig;
+  const drivers::StationDescription& d = job.station;
+  if (rig_name == "stereo") {
+    rig.stereo.emplace(sim::simulated_stereo(sim::scan_object(object), d, seed));
+    if (!d.projector)
+      context.log->warn("{}: no [projector]: passive stereo, texture-less surfaces give few points",
+                        d.source.empty() ? d.name : d.source.string());
+  } else {
+    rig.laser.emplace(sim::simulated_turntable(sim::scan_object(object), d, seed));
+  }
+  return rig;
+}
+
+SessionRecorder create_session(CommandContext& context, const ScanJob& job, const SimulatedRig& rig) {
   acquisition::SessionManifest manifest;
-  manifest.rig = "turntable";
+  manifest.rig = job.rig;
   manifest.steps = job.steps;
   manifest.station = acquisition::station_json(job.station);
   manifest.station["sim_seed"] = job.seed;
-  manifest.geometry = acquisition::scan_geometry(
-      job.calibration, job.station, acquisition::simulator_truth(simulated.rig.camera, sim::light_planes(simulated.rig)),
-      job.calibration_max_age);
+  manifest.geometry = rig.stereo ? stereo_geometry(job, rig.stereo->rig)
+                                 : acquisition::scan_geometry(job.calibration, job.station,
+                                                              acquisition::simulator_truth(rig.laser->rig.camera,
+                                                                                           sim::light_planes(rig.laser->rig)),
+                                                              job.calibration_max_age);
   manifest.parameters = job.parameters;
-  manifest.object = {job.object, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
+  manifest.stereo_parameters = job.stereo_parameters;
+  const sim::ScanObject& object = rig.object();
+  manifest.object = {job.object, object.mesh_file, {object.scale, object.translation}};
   manifest.software_version = kVersion;
   return SessionRecorder::create(job.folder, manifest, context.overwrite);
+}
+
+// How the capture ran: what it recorded, and what stopped it early ("" when
+// nothing did).
+struct Capture {
+  acquisition::RecordingOutcome outcome;
+  std::string stopped_by;
+  int signal = 0;
+};
+
+// Records the steps the session lacks on the simulated station's devices:
+// `record` drives the opened station (laser or stereo rig), every recorded
+// step goes to `on_step`.
+using RigRecording = std::function<acquisition::RecordingOutcome(
+    sim::OpenStation& station, const acquisition::RecordedStepSink& on_step, const std::function<bool()>& stop)>;
+
+using StepFeed = std::function<void(int step, double angle_deg, const std::vector<acquisition::LaserScanPoints>&)>;
+
+Capture record_on_devices(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, unsigned roles,
+                          const sim::FrameSourceFactory& frames, const sim::FrameSourceFactory& right_frames,
+                          const RigRecording& record, const StepFeed& feed) {
+  // Guarded before the first line is requested: a signal at any moment leaves
+  // the station safe, and the capture stops after the step it is taking.
+  sim::GuardedStation station(job.station, roles, frames, drivers::OnSignal::stop_work, right_frames);
+  for (const auto& note : station->notes) context.log->warn("{}", note);
+  const int steps = recorder.manifest().steps;
+  StageTimer timer(context.report, "capture");
+  const ProgressCallback progress = context.progress.stage("scan");
+  Capture result;
+  Eigen::Index points = 0;
+  try {
+    result.outcome = record(
+        *station,
+        [&](const acquisition::CapturedStep& step, const std::vector<acquisition::LaserScanPoints>& clouds) {
+          for (const auto& cloud : clouds) points += cloud.cloud.size();
+          context.progress.event("step", {{"step", step.step},
+                                          {"angle_deg", step.angle_deg},
+                                          {"steps_done", step.step + 1},
+                                          {"steps", steps},
+                                          {"points", points}});
+          feed(step.step, step.angle_deg, clouds);
+          if (progress) progress(double(step.step + 1) / steps);
+        },
+        [&] { return station.signal_received() != 0; });
+  } catch (const std::exception& e) {
+    // Whatever ended the capture (a signal cutting a move short, an unplugged
+    // camera), the recorded steps are processed below.
+    result.stopped_by = station.signal_received() ? "signal " + std::to_string(station.signal_received()) : e.what();
+    result.outcome.steps_done = recorder.steps_done();
+  }
+  result.signal = station.signal_received();
+  if (result.stopped_by.empty() && result.signal) result.stopped_by = "signal " + std::to_string(result.signal);
+  context.progress.finish();
+  timer.stop();
+  station->make_safe();
+  return result;
+}
+
+// Records the steps the session lacks with the rig's devices, each step's
+// points to `feed`.
+Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, const SimulatedRig& rig,
+                const StepFeed& feed) {
+  const drivers::StationDescription& d = job.station;
+  const int stop_after = job.stop_after.value_or(0);
+  if (rig.stereo) {
+    const unsigned roles = sim::camera_role | sim::right_camera_role | sim::turntable_role |
+                           (d.projector ? sim::projector_role : 0u);
+    return record_on_devices(
+        context, job, recorder, roles, rig.stereo->left_frames, rig.stereo->right_frames,
+        [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
+          acquisition::StereoScanDevices devices{*station.camera,    *station.right_camera, station.projector.get(),
+                                                 *station.turntable, *station.clock,        d.camera.timeout};
+          return acquisition::record_stereo_session(devices, recorder, on_step, stop_after, stop);
+        },
+        feed);
+  }
+  return record_on_devices(
+      context, job, recorder, sim::camera_role | sim::laser_role | sim::turntable_role, rig.laser->frames, {},
+      [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
+        acquisition::TurntableScanDevices devices{*station.camera, {}, *station.turntable, *station.clock,
+                                                  d.camera.timeout};
+        for (auto& laser : station.lasers) devices.lasers.push_back(laser.get());
+        return acquisition::record_turntable_session(devices, recorder, on_step, stop_after, stop);
+      },
+      feed);
 }
 
 std::string live_detail(const station::LiveStep& s, int steps) {
@@ -119,8 +244,8 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
   // A resumed scan simulates what the session recorded, with its noise seed.
   const std::string object = recorder ? recorded_object(recorder->manifest()) : job.object;
   const std::uint64_t seed = recorder ? recorder->manifest().station.value("sim_seed", job.seed) : job.seed;
-  const sim::SimulatedTurntable simulated = sim::simulated_turntable(sim::scan_object(object), description, seed);
-  if (!recorder) recorder.emplace(create_session(context, job, simulated));
+  const SimulatedRig rig = simulated_rig(context, job, recorder ? recorder->manifest().rig : job.rig, object, seed);
+  if (!recorder) recorder.emplace(create_session(context, job, rig));
   const acquisition::SessionManifest& manifest = recorder->manifest();
   for (const std::string& note : recorder->notes()) context.log->warn("{}", note);
 
@@ -140,67 +265,31 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
     acquisition::replay_session(acquisition::read_session(job.folder), replay);
   }
 
-  // Guarded before the first line is requested: a signal at any moment leaves
-  // the station safe, and the capture stops after the step it is taking.
-  sim::GuardedStation station(description, sim::camera_role | sim::laser_role | sim::turntable_role, simulated.frames,
-                              drivers::OnSignal::stop_work);
-  for (const auto& note : station->notes) context.log->warn("{}", note);
-  acquisition::TurntableScanDevices devices{*station->camera, {}, *station->turntable, *station->clock,
-                                            description.camera.timeout};
-  for (auto& laser : station->lasers) devices.lasers.push_back(laser.get());
-
-  StageTimer capture(context.report, "capture");
-  const ProgressCallback progress = context.progress.stage("scan");
-  acquisition::RecordingOutcome outcome;
-  std::string stopped_by;
-  Eigen::Index points = 0;
-  try {
-    outcome = acquisition::record_turntable_session(
-        devices, *recorder,
-        [&](const acquisition::CapturedStep& step, const std::vector<acquisition::LaserScanPoints>& clouds) {
-          for (const auto& cloud : clouds) points += cloud.cloud.size();
-          context.progress.event("step", {{"step", step.step},
-                                          {"angle_deg", step.angle_deg},
-                                          {"steps_done", step.step + 1},
-                                          {"steps", manifest.steps},
-                                          {"points", points}});
-          feed(step.step, step.angle_deg, clouds);
-          if (progress) progress(double(step.step + 1) / manifest.steps);
-        },
-        job.stop_after.value_or(0), [&] { return station.signal_received() != 0; });
-  } catch (const std::exception& e) {
-    // Whatever ended the capture (a signal cutting a move short, an unplugged
-    // camera), the recorded steps are processed below.
-    stopped_by = station.signal_received() ? "signal " + std::to_string(station.signal_received()) : e.what();
-    outcome.steps_done = recorder->steps_done();
-  }
-  if (stopped_by.empty() && station.signal_received()) stopped_by = "signal " + std::to_string(station.signal_received());
-  context.progress.finish();
-  capture.stop();
-  station->make_safe();
+  const Capture captured = capture(context, job, *recorder, rig, feed);
+  const acquisition::RecordingOutcome& outcome = captured.outcome;
 
   StageTimer process(context.report, "process");
   processing.replay.progress = context.progress.stage("process");
   processing.extra = {{"recorded_now", outcome.recorded_now}, {"live_boundary_seconds", live.seconds()}};
-  if (!stopped_by.empty()) processing.extra["stopped"] = {{"by", stopped_by}, {"after_steps", outcome.steps_done}};
+  if (!captured.stopped_by.empty())
+    processing.extra["stopped"] = {{"by", captured.stopped_by}, {"after_steps", outcome.steps_done}};
   const nlohmann::json report =
       station::process_session(acquisition::read_session(job.folder), job.folder, processing, &live);
   context.progress.finish();
   process.stop();
   for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
     context.log->warn("{}", warning);
-  for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "object", "laser_agreement",
-                          "boundary", "smoothing", "accuracy", "outputs", "stopped"})
+  for (const auto& key : {"rig", "steps", "complete", "points", "points_per_laser", "problems", "object",
+                          "laser_agreement", "boundary", "smoothing", "accuracy", "outputs", "stopped"})
     if (report.contains(key)) context.report[key] = report[key];
   context.report["session"] = job.folder.string();
   const bool complete = report["complete"].get<bool>();
   std::printf("%s %d of %d steps (%d now), %lld points\n", complete ? "scanned" : "stopped after",
               outcome.steps_done, manifest.steps, outcome.recorded_now, report["points"].get<long long>());
   print_results(report);
-  if (!stopped_by.empty()) {
-    std::printf("stopped by %s; the session keeps every completed step\n", stopped_by.c_str());
-    const int signal = station.signal_received();
-    context.exit_code = signal ? 128 + signal : 3;
+  if (!captured.stopped_by.empty()) {
+    std::printf("stopped by %s; the session keeps every completed step\n", captured.stopped_by.c_str());
+    context.exit_code = captured.signal ? 128 + captured.signal : 3;
   }
   if (!complete) std::printf("continue with: scanstation scan --resume -o %s\n", job.folder.c_str());
 }

@@ -1,6 +1,6 @@
-// The station flow as the commands run it (issue 8): a turntable scan
-// recorded into a session with the boundary grown live, then processed into
-// the results. `scan` and `demo` run a ScanJob; `replay` runs the processing
+// The station flow as the commands run it (issue 8): a turntable scan (laser
+// or stereo rig) recorded into a session with the boundary grown live, then
+// processed into the results. `scan` and `demo` run a ScanJob; `replay` runs the processing
 // alone.
 #pragma once
 
@@ -17,20 +17,25 @@
 
 namespace scanstation::app {
 
+/// rig             "turntable" (camera and line lasers) or "stereo" (two
+///                 cameras and a projector: the station needs [right_camera])
 /// object          simulated object: built-in name or mesh file
 /// parameters      laser processing parameters (a resumed session keeps its own)
+/// stereo_parameters  the stereo rig's (likewise)
 /// snapshot_every  K > 0: the live boundary as PLY every K steps into folder/snapshots
 /// calibration     see acquisition::scan_geometry
 struct ScanJob {
+  std::string rig = "turntable";
   drivers::StationDescription station;
   std::string object = "sphere";
   int steps = 36;
   bool resume = false;
-  bool steps_given = false, object_given = false, parameters_given = false;
+  bool rig_given = false, steps_given = false, object_given = false, parameters_given = false;
   std::optional<int> stop_after;
   std::uint64_t seed = 1;
   std::filesystem::path folder;
   acquisition::LaserScanParameters parameters;
+  acquisition::StereoScanParameters stereo_parameters = acquisition::stereo_scan_defaults();
   int snapshot_every = 0;
   int density = 4;
   std::string calibration;  ///< file, "sim-truth", or "" (the station's, else the simulator's truth)

@@ -62,11 +62,11 @@ std::function<double(Timestamp)> turntable_actuator(const OpenStation& station,
   return [](Timestamp) { return 0.0; };
 }
 
-std::function<bool(Timestamp, Timestamp)> laser_actuator(const OpenStation& station, const drivers::LaserRole& role,
-                                                         std::size_t index) {
+std::function<bool(Timestamp, Timestamp)> light_actuator(const OpenStation& station, const drivers::LaserRole& role,
+                                                         const std::string& sim_line) {
   if (role.backend == "sim" && station.sim_chip) {
     const SimGpioChip* chip = station.sim_chip.get();
-    const unsigned line = chip->offset_of("LASER" + std::to_string(index));
+    const unsigned line = chip->offset_of(sim_line);
     return [chip, line](Timestamp from, Timestamp to) { return chip->fraction_high(line, from, to) > 0.5; };
   }
   if (role.backend == "usb" && station.sim_board) {
@@ -89,13 +89,14 @@ VirtualActuators virtual_actuators(const OpenStation& station, const drivers::St
   actuators.angle = turntable_actuator(station, d);
   std::vector<std::function<bool(Timestamp, Timestamp)>> lasers;
   for (std::size_t i = 0; i < d.lasers.size() && i < station.lasers.size(); ++i)
-    lasers.push_back(laser_actuator(station, d.lasers[i], i));
+    lasers.push_back(light_actuator(station, d.lasers[i], "LASER" + std::to_string(i)));
   actuators.lasers = [lasers](Timestamp from, Timestamp to) {
     std::vector<int> lit;
     for (std::size_t i = 0; i < lasers.size(); ++i)
       if (lasers[i](from, to)) lit.push_back(static_cast<int>(i));
     return lit;
   };
+  if (d.projector && station.projector) actuators.projector = light_actuator(station, *d.projector, "PROJECTOR");
   return actuators;
 }
 
@@ -151,8 +152,10 @@ cv::Mat SceneFrameSource::render(const Exposure& exposure) {
   std::uint64_t seed = mix(seed_, std::bit_cast<std::uint64_t>(angle));
   if (setting.generation > 0) seed = mix(seed, setting.generation);
   for (const int laser : lit) seed = mix(seed, static_cast<std::uint64_t>(laser) + 1);
-  const cv::Mat grey =
-      expose_supersampled(*setting.renderer, view(setting, angle), camera_, supersampling_, lit, seed, sensor_);
+  const bool projector = actuators_.projector && actuators_.projector(exposure.start, exposure.end);
+  if (projector) seed = mix(seed, 0x50524F4Aull);  // "PROJ": a frame of its own
+  const cv::Mat grey = expose_supersampled(*setting.renderer, view(setting, angle), camera_, supersampling_, lit, seed,
+                                           sensor_, projector);
   cv::Mat irradiance;
   grey.convertTo(irradiance, CV_32F, 1.0 / 255.0);
   return irradiance;

@@ -19,18 +19,21 @@
 namespace scanstation::sim {
 
 /// What the simulated actuators show:
-/// angle   platter angle (radians, counter-clockwise from above) at a moment
-/// lasers  the lasers lit for more than half of an exposure [from, to)
+/// angle      platter angle (radians, counter-clockwise from above) at a moment
+/// lasers     the lasers lit for more than half of an exposure [from, to)
+/// projector  the scene's dot projector lit for more than half of it (none: never)
 struct VirtualActuators {
   std::function<double(drivers::Timestamp)> angle;
   std::function<std::vector<int>(drivers::Timestamp from, drivers::Timestamp to)> lasers;
+  std::function<bool(drivers::Timestamp from, drivers::Timestamp to)> projector;
 };
 
 /// The actuators of an opened station (lasers and turntable opened before the
 /// camera, as open_station does): a stepper on the simulated chip's STEP, DIR
 /// and EN lines (one microstep per rising STEP edge while EN is high, forward
 /// while DIR is high) or the simulated USB board's motor; laser i on line
-/// LASERi or on the board's output. The chip keeps every transition, so its
+/// LASERi or on the board's output, the projector likewise on line PROJECTOR
+/// (opened before the camera too). The chip keeps every transition, so its
 /// state is known at any past moment; the board keeps none, so its state is
 /// the one at delivery. Roles on real devices leave the platter at 0 and the
 /// laser dark.
@@ -68,6 +71,7 @@ class SceneStage {
 /// (and by the stage's generation after a change, so that each calibration
 /// view has its own noise). With `supersampling` k > 1 every pixel averages
 /// k × k rays (sim/supersampling.h): slower, unaliased edges for calibration.
+/// The dot projector of the scene shines while the actuators light it.
 /// Irradiance is the 8-bit exposure / 255: at the reference exposure (10 ms,
 /// gain 32) the simulated camera delivers the renderer's bytes.
 class SceneFrameSource final : public FrameSource {

@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::Outcome;
+using test::progress_events;
 using test::ScratchFolder;
 using test::scanstation;
 using test::slurp;
@@ -93,12 +94,7 @@ TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   EXPECT_EQ(command_report["points"], report["points"]);
   // The flow's guarantees: a closed genus-0 boundary through every distinct
   // point (grown live, then built with the lines of sight), a G¹ surface over it.
-  EXPECT_EQ(report["boundary"]["built"], "from scratch, lines of sight carved first");
-  EXPECT_EQ(report["boundary"]["live"]["steps"], kSteps);
-  EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
-  EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
-  EXPECT_EQ(report["boundary"]["all_on_boundary"], true);
-  EXPECT_EQ(report["boundary"]["vertices"], report["boundary"]["distinct_points"]);
+  test::expect_live_closed_genus_zero(report["boundary"], kSteps);
   // Ten stripes 36° apart make slivers: the six-split runs and reports where
   // the sign condition fails (tests/smoothing check G¹ where it holds).
   EXPECT_EQ(report["smoothing"]["patches"].get<Eigen::Index>(), 6 * report["boundary"]["faces"].get<Eigen::Index>());
@@ -107,17 +103,6 @@ TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   const TriangleMesh mesh = io::read_mesh(session() / "mesh.ply");
   EXPECT_EQ(mesh.vertex_count(), report["boundary"]["vertices"].get<Eigen::Index>());
   EXPECT_TRUE(mesh.vertices.has_colors()) << "the points' colours";
-}
-
-// The JSON progress lines of one kind ("step", "boundary") in `err`.
-std::vector<json> progress_events(const std::string& err, const std::string& kind) {
-  std::vector<json> events;
-  std::istringstream in(err);
-  for (std::string line; std::getline(in, line);) {
-    const json event = json::parse(line, nullptr, false);
-    if (!event.is_discarded() && event["event"] == kind) events.push_back(event);
-  }
-  return events;
 }
 
 TEST_F(ScannedSphere, ProgressJsonHasOneEventPerStepWithAngleAndPoints) {
@@ -307,11 +292,9 @@ TEST(ScanCli, UsbBoardStationScansToo) {
   EXPECT_GT(report["points"].get<int>(), 150);
 }
 
-TEST(ScanCli, StereoRigAndUnknownObjectsAreRefusedClearly) {
+// (The stereo rig's bad input: tests/cli/stereo_scan_cli_test.cpp.)
+TEST(ScanCli, UnknownObjectsAndMissingSessionsAreRefusedClearly) {
   ScratchFolder dir;
-  const Outcome stereo = scanstation("scan --rig stereo -o " + (dir / "s").string());
-  EXPECT_EQ(stereo.exit_code, 1);
-  EXPECT_THAT(stereo.err, testing::HasSubstr("--rig stereo: not yet supported"));
   const Outcome unknown = scanstation("scan --object teapot -o " + (dir / "t").string());
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_THAT(unknown.err, testing::HasSubstr("--object 'teapot': neither a built-in object"));

@@ -72,6 +72,44 @@ TEST(OpenStation, SimulatedStationScansSettledPairsAndEndsSafe) {
   station.reset();  // normal end
 }
 
+TEST(StationDescription, StereoStationNamesASecondCameraAndAProjector) {
+  const StationDescription d = read_station(stations() / "sim-stereo.toml");
+  ASSERT_TRUE(d.right_camera && d.projector);
+  EXPECT_EQ(d.right_camera->format.size.width, 640);
+  EXPECT_EQ(d.projector->backend, "sim");
+  EXPECT_FALSE(read_station(stations() / "sim.toml").right_camera) << "a laser station has none";
+  test::ScratchFolder folder;
+  std::ofstream(folder / "s.toml") << "[projector]\nbackend = \"gpio\"\n";
+  test::expect_error<FormatError>([&] { read_station(folder / "s.toml"); }, {"s.toml:1", "projector.line"});
+  std::ofstream(folder / "s.toml") << "[right_camera]\nwidth = 320\nlens = 4\n";
+  test::expect_error<FormatError>([&] { read_station(folder / "s.toml"); }, {":3", "right_camera.lens: unknown key"});
+  std::ofstream(folder / "s.toml") << "[projector]\nbackend = \"gpio\"\nline = 5\n";
+  EXPECT_EQ(read_station(folder / "s.toml").simulated().projector->backend, "sim");
+}
+
+// The stereo roles are devices like the others: the right camera streams,
+// the projector is a line of the simulated chip switched like a laser, and
+// both reach their safe state.
+TEST(OpenStation, StereoRolesOpenAsDevices) {
+  const StationDescription d = read_station(stations() / "sim-stereo.toml");
+  auto station = sim::open_station(d, sim::camera_role | sim::right_camera_role | sim::projector_role |
+                                          sim::turntable_role);
+  ASSERT_TRUE(station->right_camera && station->projector);
+  const unsigned line = station->sim_chip->offset_of("PROJECTOR");
+  station->right_camera->start();
+  const Timestamp lit = station->projector->set(true);
+  const SettledFrame frame = grab_settled(*station->right_camera, *station->clock, lit, 1000ms);
+  EXPECT_TRUE(station->sim_chip->level_at(line, frame.frame.exposure_start));
+  EXPECT_EQ(frame.frame.image.cols, 640);
+  station->make_safe();
+  EXPECT_FALSE(station->projector->is_on());
+  test::expect_error<DeviceError>([&] { station->projector->set(true); }, {"held off by the safe state"});
+  StationDescription no_right = d;
+  no_right.right_camera.reset();
+  test::expect_error<InvalidInput>([&] { sim::open_station(no_right, sim::right_camera_role); },
+                                   {"sim-stereo.toml", "[right_camera]"});
+}
+
 TEST(OpenStation, SimulatedTableHomesOnItsSwitch) {
   StationDescription d;
   d.sim_table_angle_deg = 200.0;  // where the table happens to stand at power-up

@@ -1,0 +1,31 @@
+// Reading one numeric key of a parameters object (laser_scan_parameters.h,
+// stereo_scan_parameters.h) with the error naming where it is.
+#pragma once
+
+#include "core/errors.h"
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace scanstation::acquisition {
+
+/// Reads `object`[key] into `target` when present; `valid` judges the value
+/// read (InvalidInput "where.key: expected …, got …" otherwise). An absent
+/// key keeps `target` and is listed in `missing` (when given).
+template <typename T, typename Valid>
+void read_key(const nlohmann::json& object, const char* key, const std::string& where, T& target, Valid valid,
+              const char* expected, std::vector<std::string>* missing) {
+  const auto it = object.find(key);
+  if (it == object.end()) {
+    if (missing) missing->push_back(where + "." + key);
+    return;
+  }
+  const bool right_type = std::is_integral_v<T> ? it->is_number_integer() : it->is_number();
+  if (!right_type || !valid(it->template get<T>()))
+    throw InvalidInput(where + "." + key + ": expected " + expected + ", got " + it->dump());
+  target = it->template get<T>();
+}
+
+}  // namespace scanstation::acquisition

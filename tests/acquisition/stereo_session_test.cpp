@@ -1,0 +1,99 @@
+// Stereo sessions through the devices: the two simulated cameras render the
+// stereo rig's views as the simulated stepper turned the platter, the
+// projector is a line of the simulated chip; the recording, its parameters
+// and the checks on its cameras.
+#include "acquisition/session_recording.h"
+#include "acquisition/session_replay.h"
+#include "core/errors.h"
+#include "sim/simulated_stereo.h"
+#include "test_support.h"
+
+#include <fstream>
+
+namespace scanstation::acquisition {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+TEST(StereoSession, ProjectorLitExactlyForThePairAndPointsAsReplayed) {
+  drivers::StationDescription d = drivers::simulated_stereo_station();
+  d.camera.format.size = d.right_camera->format.size = {320, 240};  // quick
+  const sim::SimulatedStereo simulated = sim::simulated_stereo(sim::scan_object("sphere"), d);
+  auto station = sim::open_station(d, sim::camera_role | sim::right_camera_role | sim::projector_role |
+                                          sim::turntable_role,
+                                   simulated.left_frames, simulated.right_frames);
+  SessionManifest m;
+  m.rig = "stereo";
+  m.steps = 3;
+  m.station = station_json(d);
+  m.geometry = acquisition::simulator_truth(simulated.rig.left, {}, simulated.rig.right);
+  m.stereo_parameters.reconstruction.pixel_step = 8;
+  m.software_version = "test";
+  test::ScratchFolder folder;
+  SessionRecorder recorder = SessionRecorder::create(folder / "s", m, io::Overwrite::refuse);
+  StereoScanDevices devices{*station->camera, *station->right_camera, station->projector.get(),
+                            *station->turntable, *station->clock, 2000ms};
+  const unsigned projector = station->sim_chip->offset_of("PROJECTOR");
+  std::vector<Eigen::Index> live;
+  record_stereo_session(devices, recorder, [&](const CapturedStep& step, const std::vector<LaserScanPoints>& clouds) {
+    ASSERT_EQ(step.frames.size(), 3u);
+    for (const CapturedFrame& f : step.frames) {
+      // The frame's whole exposure (10 ms) in the projector state it is filed under.
+      EXPECT_EQ(station->sim_chip->fraction_high(projector, f.frame.exposure_start, f.frame.exposure_start + 10ms),
+                f.projector ? 1.0 : 0.0);
+      EXPECT_GT(f.frame.exposure_start, step.move_settled);
+    }
+    EXPECT_EQ(step.frames[1].camera, 1);
+    ASSERT_EQ(clouds.size(), 1u);
+    EXPECT_GT(clouds[0].cloud.size(), 200) << "step " << step.step;
+    live.push_back(clouds[0].cloud.size());
+  });
+  EXPECT_FALSE(station->projector->is_on());
+
+  // The replay computes the very points the scan computed live.
+  const SessionContents contents = read_session(folder / "s");
+  EXPECT_EQ(contents.manifest.rig, "stereo");
+  EXPECT_EQ(contents.manifest.stereo_parameters.reconstruction.pixel_step, 8);
+  ASSERT_TRUE(contents.manifest.geometry.right_camera);
+  std::vector<Eigen::Index> replayed;
+  ReplayOptions options;
+  options.on_step = [&](int, double, const std::vector<LaserScanPoints>& clouds, Eigen::Index) {
+    replayed.push_back(clouds.at(0).cloud.size());
+  };
+  const ScanResult result = replay_session(contents, options);
+  EXPECT_EQ(replayed, live);
+  EXPECT_EQ(result.steps_used, 3);
+
+  // An edited right camera is refused like an edited left one; a stereo
+  // manifest without it cannot be read.
+  json manifest = json::parse(io::read_file(folder / "s" / "manifest.json"));
+  manifest["geometry"]["right_camera"]["fx"] = 1.0;
+  std::ofstream(folder / "s" / "manifest.json") << manifest.dump();
+  test::expect_error<InvalidInput>([&] { read_session(folder / "s"); },
+                                   {"geometry.right_camera does not match geometry_digest.right_camera"});
+  manifest["geometry"].erase("right_camera");
+  std::ofstream(folder / "s" / "manifest.json") << manifest.dump();
+  test::expect_error<InvalidInput>([&] { read_session(folder / "s"); }, {"geometry.right_camera", "both cameras"});
+}
+
+TEST(StereoSession, ParametersRoundTripAndBadValuesNamed) {
+  StereoScanParameters p = stereo_scan_defaults();
+  p.reconstruction.matcher.block_size = 7;
+  p.reconstruction.pixel_step = 3;
+  p.volume_radius = 50;
+  const StereoScanParameters back = stereo_scan_parameters_from_json(to_json(p), "m");
+  EXPECT_EQ(to_json(back), to_json(p));
+  std::vector<std::string> missing;
+  stereo_scan_parameters_from_json(json::object(), "m", stereo_scan_defaults(), &missing);
+  EXPECT_EQ(missing.size(), to_json(p).size()) << "every key named when absent";
+  test::expect_error<InvalidInput>(
+      [] { stereo_scan_parameters_from_json({{"block_size", 4}}, "manifest.json: parameters"); },
+      {"manifest.json: parameters.block_size", "odd integer"});
+  test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"pixel_step", 0}}, "p"); },
+                                   {"p.pixel_step"});
+}
+
+}  // namespace
+}  // namespace scanstation::acquisition
