@@ -14,6 +14,7 @@
 #include <chrono>
 #include <deque>
 #include <iterator>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,7 +42,7 @@ using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pa
 
 // How far a repair may widen: rounds of filling where the fill pinched the
 // boundary; rings of kept cells released when the local constriction locks.
-constexpr int kFillRounds = 30;
+constexpr int kFillRounds = 200;
 constexpr int kUnfreezeRings = 2;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
@@ -225,46 +226,80 @@ struct IncrementalConstriction::State {
     return found;
   }
 
+  // The Euler characteristic's change (in sixths, see euler_share) per
+  // connected part of the fill: the fill's cells joined through shared
+  // points. The boundary triangles at a point change only with the cells
+  // around it, so each part changes χ as if it were filled alone, and a
+  // handle in one part is found (and repaired) there, not in the whole fill.
+  // Returns the known points of the parts whose change is not 0.
+  std::vector<Vertex> handle_parts(const std::vector<Cell>& region, const std::vector<Vertex>& known) {
+    std::vector<int> parent;  // union-find over the fill's points (local_vertex numbers them)
+    const auto find = [&](int a) {
+      while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      return a;
+    };
+    const std::vector<Vertex> vertices = vertices_of(region);
+    for (std::size_t k = 0; k < vertices.size(); ++k) local_vertex[static_cast<std::size_t>(vertices[k]->info())] = static_cast<int>(k);
+    parent.resize(vertices.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto number = [&](Vertex v) { return local_vertex[static_cast<std::size_t>(v->info())]; };
+    for (const Cell c : region)
+      for (int k = 1; k < 4; ++k) parent[static_cast<std::size_t>(find(number(c->vertex(k))))] = find(number(c->vertex(0)));
+    std::vector<int> change(vertices.size(), 0);
+    for (const Vertex v : known) {
+      const auto id = static_cast<std::size_t>(v->info());
+      change[static_cast<std::size_t>(find(number(v)))] += euler_share(f_now[id]) - euler_share(faces_at[id]);
+    }
+    std::vector<Vertex> out;
+    for (const Vertex v : known)
+      if (change[static_cast<std::size_t>(find(number(v)))] != 0) out.push_back(v);
+    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    return out;
+  }
+
   // Makes sure the filled solid is still a ball: at every point whose star
   // changed the boundary must be a 2-manifold (its link one cycle), and the
   // Euler characteristic must stay 2 (a handle lowers it, an enclosed pocket
   // raises it). Where the fill pinched the boundary at a point, the removed
-  // cells around that point are filled too; where it changed the Euler
-  // characteristic, those around every point of the region. Returns false
-  // when that does not settle within a few rounds.
+  // cells around that point are filled too; where a part of the fill changed
+  // the Euler characteristic, those around every point of that part. Returns
+  // false when that does not settle within a few rounds.
   bool fill_to_ball(std::vector<Cell>& region) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
     std::vector<Vertex> known;
-    int change = 0;
     std::vector<std::array<int, 2>> link;
     const auto refresh = [&](Vertex v) {
       const auto id = static_cast<std::size_t>(v->info());
-      if (f_now[id] < 0) {
-        f_now[id] = faces_at[id];
-        known.push_back(v);
-      }
+      if (f_now[id] < 0) known.push_back(v);
       link.clear();
-      const int f = boundary_faces_at(v, &link);
-      change += euler_share(f) - euler_share(f_now[id]);
-      f_now[id] = f;
+      f_now[id] = boundary_faces_at(v, &link);
       pinched_now[id] = !single_cycle(link);
     };
     bool ball = false;
     std::size_t checked = 0;
+    std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
       const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
       checked = region.size();
-      for (const Vertex v : vertices_of(filled)) refresh(v);
-      std::vector<Vertex> pinched;
-      for (const Vertex v : known)
-        if (pinched_now[static_cast<std::size_t>(v->info())]) pinched.push_back(v);
+      // A point's pinch changes only with its star: the candidates are the
+      // points refreshed now and those pinched before.
+      std::vector<Vertex> candidates = vertices_of(filled);
+      for (const Vertex v : candidates) refresh(v);
+      candidates.insert(candidates.end(), pinched.begin(), pinched.end());
+      pinched.clear();
+      for (const Vertex v : candidates) {
+        char& p = pinched_now[static_cast<std::size_t>(v->info())];
+        if (p == 1) pinched.push_back(v);
+        p = p ? 2 : 0;  // 2: listed
+      }
+      for (const Vertex v : pinched) pinched_now[static_cast<std::size_t>(v->info())] = 1;
       if (!pinched.empty()) {
         for (const Vertex v : pinched) fill_around(v, region);
       } else if (!fill_pockets(region)) {  // a pocket and a handle would cancel out in χ
-        ball = change == 0;
-        if (!ball)
-          for (const Vertex v : known) fill_around(v, region);
+        const std::vector<Vertex> handles = handle_parts(region, known);
+        ball = handles.empty();
+        for (const Vertex v : handles) fill_around(v, region);
       }
     }
     for (const Vertex v : known) {
