@@ -12,7 +12,6 @@
 
 #include <array>
 #include <chrono>
-#include <deque>
 #include <iterator>
 #include <numeric>
 #include <string>
@@ -30,6 +29,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // constricted again. `local` numbers the cell in the complex of one repair.
 struct CellInfo {
   int local = -1;
+  unsigned visit = 0;  // the walk that last reached the cell (State::star)
   char kept = 1;
 };
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;  // the point's index
@@ -106,26 +106,60 @@ struct IncrementalConstriction::State {
   bool started = false;
 
   // The finite cells around each point, found once per batch (insertion
-  // alone changes them; CGAL's incident_cells walk is the costly part).
-  std::vector<int> star_slot;        // per point: its entry in stars, else −1
-  std::deque<std::vector<Cell>> stars;
+  // alone changes them) by a walk across the faces at the point, all stars
+  // of a batch in one array.
+  std::vector<int> star_slot;  // per point: its entry in star_range, else −1
+  std::vector<std::array<std::size_t, 2>> star_range;
+  std::vector<Cell> star_cells;
   std::vector<int> starred;
+  std::vector<Cell> walk;
+  unsigned visit_stamp = 0;
 
   bool kept(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
 
-  const std::vector<Cell>& star(Vertex v) {
+  struct Star {
+    const Cell* first;
+    const Cell* last;
+    const Cell* begin() const { return first; }
+    const Cell* end() const { return last; }
+  };
+  // Valid until the next call (the array may grow).
+  Star star(Vertex v) {
     int& slot = star_slot[static_cast<std::size_t>(v->info())];
     if (slot < 0) {
-      slot = static_cast<int>(stars.size());
+      slot = static_cast<int>(star_range.size());
       starred.push_back(v->info());
-      dt.finite_incident_cells(v, std::back_inserter(stars.emplace_back()));
+      const std::size_t from = star_cells.size();
+      if (++visit_stamp == 0) {  // wrapped: no cell may look visited
+        for (const Cell c : dt.all_cell_handles()) c->info().visit = 0;
+        visit_stamp = 1;
+      }
+      const unsigned stamp = visit_stamp;
+      walk.assign(1, v->cell());
+      v->cell()->info().visit = stamp;
+      while (!walk.empty()) {
+        const Cell c = walk.back();
+        walk.pop_back();
+        if (!dt.is_infinite(c)) star_cells.push_back(c);
+        for (int i = 0; i < 4; ++i) {
+          if (c->vertex(i) == v) continue;
+          const Cell n = c->neighbor(i);
+          if (n->info().visit != stamp) {
+            n->info().visit = stamp;
+            walk.push_back(n);
+          }
+        }
+      }
+      star_range.push_back({from, star_cells.size()});
     }
-    return stars[static_cast<std::size_t>(slot)];
+    const auto& r = star_range[static_cast<std::size_t>(slot)];
+    return {star_cells.data() + r[0], star_cells.data() + r[1]};
   }
   void forget_stars() {
     for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
     starred.clear();
-    stars.clear();
+    star_range.clear();
+    star_cells.clear();
   }
 
   // Boundary triangles at v, and (optionally) their edges opposite v.
