@@ -1,7 +1,7 @@
 // The incremental constriction against a from-scratch reconstruction of the
 // same points, measured in the same run.
 //
-//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--order scan|random] [--shape S] [--margin M]
+//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random] [--shape S] [--margin M]
 //   build/bench/incremental_bench recall [--batches B] [--margin M] MESH.off ...
 //
 // timing: N points (default 100000) sampled on a simulated shape (chalice,
@@ -9,6 +9,8 @@
 // (default 100, i.e. 1% each) in turntable (angle) or random order. Every
 // K-th batch (default 1) a from-scratch reconstruct_surface of the points so
 // far is timed; prints the per-batch ratio and the median of the ratios.
+// --stop-after S feeds only the first S batches (the median is then over
+// early batches, each a larger share of the points so far: pessimistic).
 //
 // recall: per mesh (vertices as input, its triangles as the known answer),
 // the triangle recall of the from-scratch result and of the incremental one
@@ -61,7 +63,7 @@ Eigen::MatrixX3i in_input_numbering(const SurfaceReconstruction& r, const std::v
 
 struct Args {
   Eigen::Index points = 100000;
-  int batches = 100, every = 1, margin = 2;
+  int batches = 100, every = 1, margin = 2, stop_after = -1;
   bool scan = true;
   std::string shape = "chalice";
   std::vector<std::string> files;
@@ -83,7 +85,8 @@ int timing(const Args& a) {
               "rings", "wide", "all");
   IncrementalConstriction inc(surface_defaults(), a.margin);
   std::vector<double> ratios, times;
-  for (int b = 0; b < a.batches; ++b) {
+  const int fed = a.stop_after >= 0 ? std::min(a.stop_after, a.batches) : a.batches;
+  for (int b = 0; b < fed; ++b) {
     const std::size_t to = batch_end(n, a.batches, b);
     const BatchStats s = inc.add_batch(sim::ordered_rows(P, order, batch_end(n, a.batches, b - 1), to));
     times.push_back(s.seconds);
@@ -148,6 +151,7 @@ int main(int argc, char** argv) {
     else if (arg == "--order") a.scan = value() != "random";
     else if (arg == "--shape") a.shape = value();
     else if (arg == "--margin") a.margin = std::stoi(value());
+    else if (arg == "--stop-after") a.stop_after = std::stoi(value());
     else a.files.push_back(arg);
   }
   if (mode == "timing") return timing(a);

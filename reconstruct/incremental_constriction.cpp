@@ -96,6 +96,7 @@ struct IncrementalConstriction::State {
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches
   std::vector<int> faces_at;            // f(v): boundary triangles at each point
+  Eigen::Index corners = 0;             // Σ f(v): three per boundary triangle
   std::vector<char> pending;            // points constriction could not reach
   std::vector<int> local_vertex;        // scratch: a point's number in a LocalComplex, else −1
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
@@ -433,11 +434,14 @@ struct IncrementalConstriction::State {
     pending_count = 0;
     constrict_region(all, false, true, touched);
     std::fill(faces_at.begin(), faces_at.end(), 0);
+    corners = 0;
     for (const Cell c : all)
       if (c->info().kept)
         for (int i = 0; i < 4; ++i)
-          if (!kept(c->neighbor(i)))
+          if (!kept(c->neighbor(i))) {
+            corners += 3;
             for (int k = 1; k < 4; ++k) ++faces_at[static_cast<std::size_t>(c->vertex((i + k) % 4)->info())];
+          }
   }
 
   // Records f(v) for the points of the repaired region; returns the boundary
@@ -450,7 +454,10 @@ struct IncrementalConstriction::State {
     for (const Vertex v : vertices) {
       link.clear();
       const int id = v->info();
-      faces_at[static_cast<std::size_t>(id)] = boundary_faces_at(v, &link);
+      int& f = faces_at[static_cast<std::size_t>(id)];
+      corners -= f;
+      f = boundary_faces_at(v, &link);
+      corners += f;
       for (const auto& e : link) {  // count a triangle at its smallest point in the patch
         const auto first = [&](int w) { return local_vertex[static_cast<std::size_t>(w)] < 0 || id < w; };
         patch += first(e[0]) && first(e[1]);
@@ -613,10 +620,7 @@ TriangleMesh IncrementalConstriction::boundary() const { return surface().mesh; 
 Eigen::Index IncrementalConstriction::point_count() const { return static_cast<Eigen::Index>(state_->points.size()); }
 
 Eigen::Index IncrementalConstriction::boundary_face_count() const {
-  if (!state_->started) return 0;
-  Eigen::Index corners = 0;
-  for (const int f : state_->faces_at) corners += f;
-  return corners / 3;
+  return state_->started ? state_->corners / 3 : 0;
 }
 
 std::size_t IncrementalConstriction::wider_repairs() const { return state_->wider; }

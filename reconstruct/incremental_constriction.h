@@ -84,7 +84,7 @@ class IncrementalConstriction {
 
   Eigen::Index point_count() const;
   /// Triangles of the constricted boundary as it stands (before the
-  /// augmentation and flips surface() adds); 0 until the points span 3D. O(points).
+  /// augmentation and flips surface() adds); 0 until the points span 3D. O(1).
   Eigen::Index boundary_face_count() const;
   /// Batches repaired by re-constricting the whole triangulation.
   std::size_t wider_repairs() const;

@@ -26,6 +26,10 @@ namespace {
 // points are pending and surface() brings them on by augmentation.
 void expect_boundary_through_all(const IncrementalConstriction& inc, const BatchStats& s, const std::string& what) {
   EXPECT_EQ(s.all_on_boundary, s.pending == 0) << what;
+  // The running count of boundary triangles (kept per point, updated only
+  // where a batch repaired) against Euler's F = 2V − 4 for the closed genus-0
+  // boundary through the points that are not pending.
+  EXPECT_EQ(inc.boundary_face_count(), 2 * static_cast<Eigen::Index>(s.points_so_far - s.pending) - 4) << what;
   const SurfaceReconstruction r = inc.surface();
   EXPECT_EQ(r.mesh.vertex_count(), static_cast<Eigen::Index>(s.points_so_far)) << what;
   EXPECT_TRUE(r.statistics.interior_vertices.empty()) << what;
