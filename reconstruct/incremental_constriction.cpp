@@ -10,6 +10,7 @@
 #include <CGAL/property_map.h>
 #include <CGAL/spatial_sort.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <iterator>
@@ -261,34 +262,55 @@ struct IncrementalConstriction::State {
     return found;
   }
 
-  // The Euler characteristic's change (in sixths, see euler_share) per
-  // connected part of the fill: the fill's cells joined through shared
-  // points. The boundary triangles at a point change only with the cells
-  // around it, so each part changes χ as if it were filled alone, and a
-  // handle in one part is found (and repaired) there, not in the whole fill.
-  // Returns the known points of the parts whose change is not 0.
-  std::vector<Vertex> handle_parts(const std::vector<Cell>& region, const std::vector<Vertex>& known) {
-    std::vector<int> parent;  // union-find over the fill's points (local_vertex numbers them)
-    const auto find = [&](int a) {
-      while (parent[static_cast<std::size_t>(a)] != a) a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+  // The connected parts of a set of cells, joined through shared points:
+  // cells (or points) of different parts share no face, edge or point, so
+  // their boundary triangles and removability never depend on each other.
+  struct Parts {
+    std::vector<Vertex> vertices;  // the distinct points of the cells
+    std::vector<int> of_vertex;    // the part of vertices[k]
+    std::vector<int> of_cell;      // the part of cells[i], numbered in the order of their first cells
+    int count = 0;
+  };
+  Parts parts_of(const std::vector<Cell>& cells) {
+    Parts p;
+    p.vertices = vertices_of(cells);
+    for (std::size_t k = 0; k < p.vertices.size(); ++k) local_vertex[static_cast<std::size_t>(p.vertices[k]->info())] = static_cast<int>(k);
+    const auto number = [&](Vertex v) { return static_cast<std::size_t>(local_vertex[static_cast<std::size_t>(v->info())]); };
+    std::vector<std::size_t> parent(p.vertices.size());  // union-find over the points
+    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    const auto find = [&](std::size_t a) {
+      while (parent[a] != a) a = parent[a] = parent[parent[a]];
       return a;
     };
-    const std::vector<Vertex> vertices = vertices_of(region);
-    for (std::size_t k = 0; k < vertices.size(); ++k) local_vertex[static_cast<std::size_t>(vertices[k]->info())] = static_cast<int>(k);
-    parent.resize(vertices.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    const auto number = [&](Vertex v) { return local_vertex[static_cast<std::size_t>(v->info())]; };
-    for (const Cell c : region)
-      for (int k = 1; k < 4; ++k) parent[static_cast<std::size_t>(find(number(c->vertex(k))))] = find(number(c->vertex(0)));
-    std::vector<int> change(vertices.size(), 0);
-    for (const Vertex v : known) {
-      const auto id = static_cast<std::size_t>(v->info());
-      change[static_cast<std::size_t>(find(number(v)))] += euler_share(f_now[id]) - euler_share(faces_at[id]);
+    for (const Cell c : cells)
+      for (int k = 1; k < 4; ++k) parent[find(number(c->vertex(k)))] = find(number(c->vertex(0)));
+    std::vector<int> label(p.vertices.size(), -1);
+    for (const Cell c : cells) {
+      int& l = label[find(number(c->vertex(0)))];
+      if (l < 0) l = p.count++;
+      p.of_cell.push_back(l);
+    }
+    for (const Vertex v : p.vertices) p.of_vertex.push_back(label[find(number(v))]);
+    for (const Vertex v : p.vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    return p;
+  }
+
+  // The Euler characteristic's change (in sixths, see euler_share) per
+  // connected part of the fill: the boundary triangles at a point change
+  // only with the cells around it, so each part changes χ as if it were
+  // filled alone, and a handle in one part is found (and repaired) there,
+  // not in the whole fill. Returns the points of the parts whose change is
+  // not 0 (f_now holds f(v) at every point of the fill).
+  std::vector<Vertex> handle_parts(const std::vector<Cell>& region) {
+    const Parts p = parts_of(region);
+    std::vector<int> change(static_cast<std::size_t>(p.count), 0);
+    for (std::size_t k = 0; k < p.vertices.size(); ++k) {
+      const auto id = static_cast<std::size_t>(p.vertices[k]->info());
+      change[static_cast<std::size_t>(p.of_vertex[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
     }
     std::vector<Vertex> out;
-    for (const Vertex v : known)
-      if (change[static_cast<std::size_t>(find(number(v)))] != 0) out.push_back(v);
-    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    for (std::size_t k = 0; k < p.vertices.size(); ++k)
+      if (change[static_cast<std::size_t>(p.of_vertex[k])] != 0) out.push_back(p.vertices[k]);
     return out;
   }
 
@@ -332,7 +354,7 @@ struct IncrementalConstriction::State {
       if (!pinched.empty()) {
         for (const Vertex v : pinched) fill_around(v, region);
       } else if (!fill_pockets(region)) {  // a pocket and a handle would cancel out in χ
-        const std::vector<Vertex> handles = handle_parts(region, known);
+        const std::vector<Vertex> handles = handle_parts(region);
         ball = handles.empty();
         for (const Vertex v : handles) fill_around(v, region);
       }
@@ -503,6 +525,34 @@ struct IncrementalConstriction::State {
     return fresh;
   }
 
+  // The margin rings around the parts of the new cells (joined through
+  // shared points) that hold at least a tenth of the batch's new points: a
+  // scan front, where the old boundary capped space not scanned yet and was
+  // carved without these points. A part of a few points among many (a batch
+  // spread over the surface, as in random order) refines the boundary where
+  // it already was, and rings around every one of them would cover the
+  // whole surface.
+  std::vector<Cell> with_margin(const std::vector<Cell>& created, const std::vector<Vertex>& fresh) {
+    if (margin == 0) return created;
+    const Parts parts = parts_of(created);
+    std::vector<std::size_t> fresh_in(static_cast<std::size_t>(parts.count), 0);
+    for (const Vertex v : fresh) local_vertex[static_cast<std::size_t>(v->info())] = 0;
+    for (std::size_t k = 0; k < parts.vertices.size(); ++k)
+      fresh_in[static_cast<std::size_t>(parts.of_vertex[k])] += local_vertex[static_cast<std::size_t>(parts.vertices[k]->info())] == 0;
+    for (const Vertex v : fresh) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    std::vector<Cell> front, rest;
+    for (std::size_t i = 0; i < created.size(); ++i)
+      (10 * fresh_in[static_cast<std::size_t>(parts.of_cell[i])] >= fresh.size() ? front : rest).push_back(created[i]);
+    for (const Cell c : rest) c->info().local = 0;  // not taken into the front's rings
+    for (int ring = 0; ring < margin && !front.empty(); ++ring) {
+      grow(front, [](Cell c) { return c->info().kept != 0; });
+      for (const Vertex v : vertices_of(front)) fill_around(v, front);
+    }
+    for (const Cell c : rest) c->info().local = -1;
+    front.insert(front.end(), rest.begin(), rest.end());
+    return front;
+  }
+
   // Fill, check, constrict again (see the class comment).
   void repair(const std::vector<Vertex>& fresh, BatchStats& s) {
     std::vector<Cell> region;
@@ -514,20 +564,32 @@ struct IncrementalConstriction::State {
         }
     }
     for (const Cell c : region) c->info().local = -1;
-    for (int ring = 0; ring < margin; ++ring) {
-      grow(region, [](Cell c) { return c->info().kept != 0; });
-      for (const Vertex v : vertices_of(region)) fill_around(v, region);
-    }
-    const bool ball = fill_to_ball(region);
-    for (int ring = 0; ball; ++ring) {
-      // The last ring keeps its result even if it locked: the points it
-      // could not reach stay pending (augmentation brings them on, §5.4).
-      if (constrict_region(region, true, ring == kUnfreezeRings, s.tetrahedra_touched) || ring == kUnfreezeRings) {
-        s.rings = ring;
-        s.faces_changed = update_faces_at(region);
-        return;
+    region = with_margin(region, fresh);
+    if (fill_to_ball(region)) {
+      // Each connected part of the fill is constricted on its own, so a part
+      // that locks releases rings of kept cells around itself only, and the
+      // others stop where their points are reached.
+      const Parts parts = parts_of(region);
+      std::vector<std::vector<Cell>> pieces(static_cast<std::size_t>(parts.count));
+      for (std::size_t i = 0; i < region.size(); ++i) pieces[static_cast<std::size_t>(parts.of_cell[i])].push_back(region[i]);
+      std::vector<Cell> repaired;
+      for (std::vector<Cell>& piece : pieces) {
+        for (int ring = 0;; ++ring) {
+          // The last ring keeps its result even if it locked: the points it
+          // could not reach stay pending (augmentation brings them on, §5.4).
+          // A ring may take in cells of a later part: that part's own
+          // constriction then starts from what this one left.
+          const bool last = ring == kUnfreezeRings;
+          if (constrict_region(piece, true, last, s.tetrahedra_touched) || last) {
+            s.rings = std::max(s.rings, ring);
+            break;
+          }
+          grow(piece, [](Cell c) { return c->info().kept != 0; });
+        }
+        repaired.insert(repaired.end(), piece.begin(), piece.end());
       }
-      grow(region, [](Cell c) { return c->info().kept != 0; });
+      s.faces_changed = update_faces_at(repaired);
+      return;
     }
     s.wider_repair = true;
     ++wider;
