@@ -92,7 +92,7 @@ struct LocalComplex {
 struct IncrementalConstriction::State {
   ReconstructionOptions options;
   ConstrictionOptions constriction;
-  int margin = 2;
+  int margin = 3;
   Delaunay dt;
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches

@@ -91,6 +91,29 @@ TEST(IncrementalConstriction, RandomOrderOnRandomCloudsStaysLocal) {
   }
 }
 
+// A batch spread over the whole surface (random order) is repaired where its
+// points fell: each part of the fill is constricted on its own and only a
+// scan front gets margin rings, so the cells a late batch of 2% touches
+// (its complexes, with the frozen cells around them) stay well below the
+// whole triangulation (about 6.5 cells per point on a closed surface; rings
+// around every new point would touch about 4 per point, i.e. nearly all).
+TEST(IncrementalConstriction, RandomOrderBatchTouchesALocalRegion) {
+  sim::Random random(7);
+  Eigen::MatrixX3d P(10000, 3);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3d d(random.normal(), random.normal(), random.normal());
+    P.row(i) = d.normalized().transpose();
+  }
+  const std::vector<Eigen::Index> order = sim::shuffled_order(P.rows(), 5);
+  IncrementalConstriction inc;
+  BatchStats s;
+  for (std::size_t from = 0; from < order.size(); from += 200) s = inc.add_batch(sim::ordered_rows(P, order, from, from + 200));
+  std::printf("last batch of 200: %zu cells touched, %zu points so far\n", s.tetrahedra_touched, s.points_so_far);
+  EXPECT_LT(s.tetrahedra_touched, 2 * s.points_so_far);
+  EXPECT_EQ(inc.wider_repairs(), 0u);
+  expect_boundary_through_all(inc, s, "sphere, last batch");
+}
+
 TEST(IncrementalConstriction, CoSphericalPointsInSmallBatches) {
   const Eigen::MatrixX3d P = sim::icosphere(2).vertices.positions;  // all on one sphere
   const IncrementalConstriction inc = feed_checked(P, sim::shuffled_order(P.rows(), 8), 12, "icosphere");
