@@ -10,10 +10,11 @@
 #include <CGAL/property_map.h>
 #include <CGAL/spatial_sort.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
-#include <deque>
 #include <iterator>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // constricted again. `local` numbers the cell in the complex of one repair.
 struct CellInfo {
   int local = -1;
+  unsigned visit = 0;  // the walk that last reached the cell (State::star)
   char kept = 1;
 };
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;  // the point's index
@@ -41,7 +43,7 @@ using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pa
 
 // How far a repair may widen: rounds of filling where the fill pinched the
 // boundary; rings of kept cells released when the local constriction locks.
-constexpr int kFillRounds = 30;
+constexpr int kFillRounds = 200;
 constexpr int kUnfreezeRings = 2;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
@@ -90,11 +92,12 @@ struct LocalComplex {
 struct IncrementalConstriction::State {
   ReconstructionOptions options;
   ConstrictionOptions constriction;
-  int margin = 2;
+  int margin = 3;
   Delaunay dt;
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches
   std::vector<int> faces_at;            // f(v): boundary triangles at each point
+  Eigen::Index corners = 0;             // Σ f(v): three per boundary triangle
   std::vector<char> pending;            // points constriction could not reach
   std::vector<int> local_vertex;        // scratch: a point's number in a LocalComplex, else −1
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
@@ -105,26 +108,60 @@ struct IncrementalConstriction::State {
   bool started = false;
 
   // The finite cells around each point, found once per batch (insertion
-  // alone changes them; CGAL's incident_cells walk is the costly part).
-  std::vector<int> star_slot;        // per point: its entry in stars, else −1
-  std::deque<std::vector<Cell>> stars;
+  // alone changes them) by a walk across the faces at the point, all stars
+  // of a batch in one array.
+  std::vector<int> star_slot;  // per point: its entry in star_range, else −1
+  std::vector<std::array<std::size_t, 2>> star_range;
+  std::vector<Cell> star_cells;
   std::vector<int> starred;
+  std::vector<Cell> walk;
+  unsigned visit_stamp = 0;
 
   bool kept(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
 
-  const std::vector<Cell>& star(Vertex v) {
+  struct Star {
+    const Cell* first;
+    const Cell* last;
+    const Cell* begin() const { return first; }
+    const Cell* end() const { return last; }
+  };
+  // Valid until the next call (the array may grow).
+  Star star(Vertex v) {
     int& slot = star_slot[static_cast<std::size_t>(v->info())];
     if (slot < 0) {
-      slot = static_cast<int>(stars.size());
+      slot = static_cast<int>(star_range.size());
       starred.push_back(v->info());
-      dt.finite_incident_cells(v, std::back_inserter(stars.emplace_back()));
+      const std::size_t from = star_cells.size();
+      if (++visit_stamp == 0) {  // wrapped: no cell may look visited
+        for (const Cell c : dt.all_cell_handles()) c->info().visit = 0;
+        visit_stamp = 1;
+      }
+      const unsigned stamp = visit_stamp;
+      walk.assign(1, v->cell());
+      v->cell()->info().visit = stamp;
+      while (!walk.empty()) {
+        const Cell c = walk.back();
+        walk.pop_back();
+        if (!dt.is_infinite(c)) star_cells.push_back(c);
+        for (int i = 0; i < 4; ++i) {
+          if (c->vertex(i) == v) continue;
+          const Cell n = c->neighbor(i);
+          if (n->info().visit != stamp) {
+            n->info().visit = stamp;
+            walk.push_back(n);
+          }
+        }
+      }
+      star_range.push_back({from, star_cells.size()});
     }
-    return stars[static_cast<std::size_t>(slot)];
+    const auto& r = star_range[static_cast<std::size_t>(slot)];
+    return {star_cells.data() + r[0], star_cells.data() + r[1]};
   }
   void forget_stars() {
     for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
     starred.clear();
-    stars.clear();
+    star_range.clear();
+    star_cells.clear();
   }
 
   // Boundary triangles at v, and (optionally) their edges opposite v.
@@ -225,46 +262,101 @@ struct IncrementalConstriction::State {
     return found;
   }
 
+  // The connected parts of a set of cells, joined through shared points:
+  // cells (or points) of different parts share no face, edge or point, so
+  // their boundary triangles and removability never depend on each other.
+  struct Parts {
+    std::vector<Vertex> vertices;  // the distinct points of the cells
+    std::vector<int> of_vertex;    // the part of vertices[k]
+    std::vector<int> of_cell;      // the part of cells[i], numbered in the order of their first cells
+    int count = 0;
+  };
+  Parts parts_of(const std::vector<Cell>& cells) {
+    Parts p;
+    p.vertices = vertices_of(cells);
+    for (std::size_t k = 0; k < p.vertices.size(); ++k) local_vertex[static_cast<std::size_t>(p.vertices[k]->info())] = static_cast<int>(k);
+    const auto number = [&](Vertex v) { return static_cast<std::size_t>(local_vertex[static_cast<std::size_t>(v->info())]); };
+    std::vector<std::size_t> parent(p.vertices.size());  // union-find over the points
+    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    const auto find = [&](std::size_t a) {
+      while (parent[a] != a) a = parent[a] = parent[parent[a]];
+      return a;
+    };
+    for (const Cell c : cells)
+      for (int k = 1; k < 4; ++k) parent[find(number(c->vertex(k)))] = find(number(c->vertex(0)));
+    std::vector<int> label(p.vertices.size(), -1);
+    for (const Cell c : cells) {
+      int& l = label[find(number(c->vertex(0)))];
+      if (l < 0) l = p.count++;
+      p.of_cell.push_back(l);
+    }
+    for (const Vertex v : p.vertices) p.of_vertex.push_back(label[find(number(v))]);
+    for (const Vertex v : p.vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    return p;
+  }
+
+  // The Euler characteristic's change (in sixths, see euler_share) per
+  // connected part of the fill: the boundary triangles at a point change
+  // only with the cells around it, so each part changes χ as if it were
+  // filled alone, and a handle in one part is found (and repaired) there,
+  // not in the whole fill. Returns the points of the parts whose change is
+  // not 0 (f_now holds f(v) at every point of the fill).
+  std::vector<Vertex> handle_parts(const std::vector<Cell>& region) {
+    const Parts p = parts_of(region);
+    std::vector<int> change(static_cast<std::size_t>(p.count), 0);
+    for (std::size_t k = 0; k < p.vertices.size(); ++k) {
+      const auto id = static_cast<std::size_t>(p.vertices[k]->info());
+      change[static_cast<std::size_t>(p.of_vertex[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
+    }
+    std::vector<Vertex> out;
+    for (std::size_t k = 0; k < p.vertices.size(); ++k)
+      if (change[static_cast<std::size_t>(p.of_vertex[k])] != 0) out.push_back(p.vertices[k]);
+    return out;
+  }
+
   // Makes sure the filled solid is still a ball: at every point whose star
   // changed the boundary must be a 2-manifold (its link one cycle), and the
   // Euler characteristic must stay 2 (a handle lowers it, an enclosed pocket
   // raises it). Where the fill pinched the boundary at a point, the removed
-  // cells around that point are filled too; where it changed the Euler
-  // characteristic, those around every point of the region. Returns false
-  // when that does not settle within a few rounds.
+  // cells around that point are filled too; where a part of the fill changed
+  // the Euler characteristic, those around every point of that part. Returns
+  // false when that does not settle within a few rounds.
   bool fill_to_ball(std::vector<Cell>& region) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
     std::vector<Vertex> known;
-    int change = 0;
     std::vector<std::array<int, 2>> link;
     const auto refresh = [&](Vertex v) {
       const auto id = static_cast<std::size_t>(v->info());
-      if (f_now[id] < 0) {
-        f_now[id] = faces_at[id];
-        known.push_back(v);
-      }
+      if (f_now[id] < 0) known.push_back(v);
       link.clear();
-      const int f = boundary_faces_at(v, &link);
-      change += euler_share(f) - euler_share(f_now[id]);
-      f_now[id] = f;
+      f_now[id] = boundary_faces_at(v, &link);
       pinched_now[id] = !single_cycle(link);
     };
     bool ball = false;
     std::size_t checked = 0;
+    std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
       const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
       checked = region.size();
-      for (const Vertex v : vertices_of(filled)) refresh(v);
-      std::vector<Vertex> pinched;
-      for (const Vertex v : known)
-        if (pinched_now[static_cast<std::size_t>(v->info())]) pinched.push_back(v);
+      // A point's pinch changes only with its star: the candidates are the
+      // points refreshed now and those pinched before.
+      std::vector<Vertex> candidates = vertices_of(filled);
+      for (const Vertex v : candidates) refresh(v);
+      candidates.insert(candidates.end(), pinched.begin(), pinched.end());
+      pinched.clear();
+      for (const Vertex v : candidates) {
+        char& p = pinched_now[static_cast<std::size_t>(v->info())];
+        if (p == 1) pinched.push_back(v);
+        p = p ? 2 : 0;  // 2: listed
+      }
+      for (const Vertex v : pinched) pinched_now[static_cast<std::size_t>(v->info())] = 1;
       if (!pinched.empty()) {
         for (const Vertex v : pinched) fill_around(v, region);
       } else if (!fill_pockets(region)) {  // a pocket and a handle would cancel out in χ
-        ball = change == 0;
-        if (!ball)
-          for (const Vertex v : known) fill_around(v, region);
+        const std::vector<Vertex> handles = handle_parts(region);
+        ball = handles.empty();
+        for (const Vertex v : handles) fill_around(v, region);
       }
     }
     for (const Vertex v : known) {
@@ -364,11 +456,14 @@ struct IncrementalConstriction::State {
     pending_count = 0;
     constrict_region(all, false, true, touched);
     std::fill(faces_at.begin(), faces_at.end(), 0);
+    corners = 0;
     for (const Cell c : all)
       if (c->info().kept)
         for (int i = 0; i < 4; ++i)
-          if (!kept(c->neighbor(i)))
+          if (!kept(c->neighbor(i))) {
+            corners += 3;
             for (int k = 1; k < 4; ++k) ++faces_at[static_cast<std::size_t>(c->vertex((i + k) % 4)->info())];
+          }
   }
 
   // Records f(v) for the points of the repaired region; returns the boundary
@@ -381,7 +476,10 @@ struct IncrementalConstriction::State {
     for (const Vertex v : vertices) {
       link.clear();
       const int id = v->info();
-      faces_at[static_cast<std::size_t>(id)] = boundary_faces_at(v, &link);
+      int& f = faces_at[static_cast<std::size_t>(id)];
+      corners -= f;
+      f = boundary_faces_at(v, &link);
+      corners += f;
       for (const auto& e : link) {  // count a triangle at its smallest point in the patch
         const auto first = [&](int w) { return local_vertex[static_cast<std::size_t>(w)] < 0 || id < w; };
         patch += first(e[0]) && first(e[1]);
@@ -427,6 +525,34 @@ struct IncrementalConstriction::State {
     return fresh;
   }
 
+  // The margin rings around the parts of the new cells (joined through
+  // shared points) that hold at least a tenth of the batch's new points: a
+  // scan front, where the old boundary capped space not scanned yet and was
+  // carved without these points. A part of a few points among many (a batch
+  // spread over the surface, as in random order) refines the boundary where
+  // it already was, and rings around every one of them would cover the
+  // whole surface.
+  std::vector<Cell> with_margin(const std::vector<Cell>& created, const std::vector<Vertex>& fresh) {
+    if (margin == 0) return created;
+    const Parts parts = parts_of(created);
+    std::vector<std::size_t> fresh_in(static_cast<std::size_t>(parts.count), 0);
+    for (const Vertex v : fresh) local_vertex[static_cast<std::size_t>(v->info())] = 0;
+    for (std::size_t k = 0; k < parts.vertices.size(); ++k)
+      fresh_in[static_cast<std::size_t>(parts.of_vertex[k])] += local_vertex[static_cast<std::size_t>(parts.vertices[k]->info())] == 0;
+    for (const Vertex v : fresh) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    std::vector<Cell> front, rest;
+    for (std::size_t i = 0; i < created.size(); ++i)
+      (10 * fresh_in[static_cast<std::size_t>(parts.of_cell[i])] >= fresh.size() ? front : rest).push_back(created[i]);
+    for (const Cell c : rest) c->info().local = 0;  // not taken into the front's rings
+    for (int ring = 0; ring < margin && !front.empty(); ++ring) {
+      grow(front, [](Cell c) { return c->info().kept != 0; });
+      for (const Vertex v : vertices_of(front)) fill_around(v, front);
+    }
+    for (const Cell c : rest) c->info().local = -1;
+    front.insert(front.end(), rest.begin(), rest.end());
+    return front;
+  }
+
   // Fill, check, constrict again (see the class comment).
   void repair(const std::vector<Vertex>& fresh, BatchStats& s) {
     std::vector<Cell> region;
@@ -438,20 +564,32 @@ struct IncrementalConstriction::State {
         }
     }
     for (const Cell c : region) c->info().local = -1;
-    for (int ring = 0; ring < margin; ++ring) {
-      grow(region, [](Cell c) { return c->info().kept != 0; });
-      for (const Vertex v : vertices_of(region)) fill_around(v, region);
-    }
-    const bool ball = fill_to_ball(region);
-    for (int ring = 0; ball; ++ring) {
-      // The last ring keeps its result even if it locked: the points it
-      // could not reach stay pending (augmentation brings them on, §5.4).
-      if (constrict_region(region, true, ring == kUnfreezeRings, s.tetrahedra_touched) || ring == kUnfreezeRings) {
-        s.rings = ring;
-        s.faces_changed = update_faces_at(region);
-        return;
+    region = with_margin(region, fresh);
+    if (fill_to_ball(region)) {
+      // Each connected part of the fill is constricted on its own, so a part
+      // that locks releases rings of kept cells around itself only, and the
+      // others stop where their points are reached.
+      const Parts parts = parts_of(region);
+      std::vector<std::vector<Cell>> pieces(static_cast<std::size_t>(parts.count));
+      for (std::size_t i = 0; i < region.size(); ++i) pieces[static_cast<std::size_t>(parts.of_cell[i])].push_back(region[i]);
+      std::vector<Cell> repaired;
+      for (std::vector<Cell>& piece : pieces) {
+        for (int ring = 0;; ++ring) {
+          // The last ring keeps its result even if it locked: the points it
+          // could not reach stay pending (augmentation brings them on, §5.4).
+          // A ring may take in cells of a later part: that part's own
+          // constriction then starts from what this one left.
+          const bool last = ring == kUnfreezeRings;
+          if (constrict_region(piece, true, last, s.tetrahedra_touched) || last) {
+            s.rings = std::max(s.rings, ring);
+            break;
+          }
+          grow(piece, [](Cell c) { return c->info().kept != 0; });
+        }
+        repaired.insert(repaired.end(), piece.begin(), piece.end());
       }
-      grow(region, [](Cell c) { return c->info().kept != 0; });
+      s.faces_changed = update_faces_at(repaired);
+      return;
     }
     s.wider_repair = true;
     ++wider;
@@ -544,10 +682,7 @@ TriangleMesh IncrementalConstriction::boundary() const { return surface().mesh; 
 Eigen::Index IncrementalConstriction::point_count() const { return static_cast<Eigen::Index>(state_->points.size()); }
 
 Eigen::Index IncrementalConstriction::boundary_face_count() const {
-  if (!state_->started) return 0;
-  Eigen::Index corners = 0;
-  for (const int f : state_->faces_at) corners += f;
-  return corners / 3;
+  return state_->started ? state_->corners / 3 : 0;
 }
 
 std::size_t IncrementalConstriction::wider_repairs() const { return state_->wider; }

@@ -35,20 +35,24 @@ struct BatchStats {
 /// received so far, batch by batch.
 ///
 /// Per batch: the points are inserted into the Delaunay triangulation (CGAL,
-/// exact predicates, no rebuild); the tetrahedra they create, and `margin`
-/// rings of cells around them, start kept ("filled": the region is re-opened as if
-/// it were fresh convex hull); a local check (every vertex link of the new
-/// boundary a single cycle, no enclosed pocket, Euler characteristic
-/// unchanged) confirms the filled solid is still a ball, else the fill grows
-/// where it pinched the boundary or closes the pockets; then the filled cells are
-/// constricted again with the batch constriction (constrict(), the
-/// removability rules of §5.3 and the γ-indicator of Definition 5.2 with the
-/// options' selection rule), the kept cells around them frozen, until every
-/// point is on the boundary. If that locks, the frozen ring is released, up
-/// to two rings; failing that, the whole triangulation is constricted again
-/// from its convex hull (counted as a wider repair). Points even that cannot
-/// reach stay pending, and surface() brings them to the boundary with the
-/// augmentation of §5.4 before the flips, as reconstruct_surface does.
+/// exact predicates, no rebuild); the tetrahedra they create start kept
+/// ("filled": the region is re-opened as if it were fresh convex hull), and
+/// so do `margin` rings of cells around the parts of them that form a scan
+/// front (a connected part holding a tenth of the batch's new points); a
+/// local check (every vertex link of the new boundary a single cycle, no
+/// enclosed pocket, Euler characteristic unchanged in every connected part of
+/// the fill) confirms the filled solid is still a ball, else the fill grows
+/// where it pinched the boundary, closes the pockets, or grows the part that
+/// made a handle; then each connected part of the fill is constricted again
+/// on its own with the batch constriction (constrict(), the removability
+/// rules of §5.3 and the γ-indicator of Definition 5.2 with the options'
+/// selection rule), the kept cells around it frozen, until its points are on
+/// the boundary. If a part locks, the frozen ring around it is released, up
+/// to two rings; points even that cannot reach stay pending, and surface()
+/// brings them to the boundary with the augmentation of §5.4 before the
+/// flips, as reconstruct_surface does. Only if the fill does not settle is
+/// the whole triangulation constricted again from its convex hull (counted
+/// as a wider repair).
 ///
 /// Duplicates (within and across batches) are merged; until the points span
 /// 3D (e.g. a first batch of fewer than 4 points, or one laser profile in a
@@ -58,15 +62,17 @@ class IncrementalConstriction {
  public:
   /// options  as for reconstruct_surface; kept faces (§5.7) and the Voronoi
   ///          skeleton method are not supported (InvalidInput)
-  /// margin   rings of cells (kept and removed) around the new ones that are
-  ///          re-opened too, so that decisions taken before the new points
-  ///          were known (e.g. a tunnel carved to a point at the edge of the
-  ///          scan so far) are taken again. Measured on CGAL's meshes in
-  ///          100 batches (bench/incremental_bench recall): with 3 the final
-  ///          triangle recall equals from scratch within 0.1 points on six
-  ///          meshes, with 2 within 1.4, with 0 up to 18 points lower; each
-  ///          ring costs time per batch (README, Benchmarks).
-  explicit IncrementalConstriction(const ReconstructionOptions& options = surface_defaults(), int margin = 2);
+  /// margin   rings of cells (kept and removed) around a scan front's new
+  ///          cells that are re-opened too, so that decisions taken before
+  ///          the new points were known (e.g. a tunnel carved to a point at
+  ///          the edge of the scan so far) are taken again. Measured on 14 of
+  ///          CGAL's meshes in 100 batches (bench/incremental_bench recall):
+  ///          with 3 the final triangle recall is within 0.4 points of from
+  ///          scratch in scan and in random order; with 2, 1.4 points lower in
+  ///          scan order (cactus) and 5 in random order (elephant); with 0, 19
+  ///          lower in scan order (cactus). Each ring costs time per batch
+  ///          (docs/design.md, incremental constriction).
+  explicit IncrementalConstriction(const ReconstructionOptions& options = surface_defaults(), int margin = 3);
   ~IncrementalConstriction();
   IncrementalConstriction(IncrementalConstriction&&) noexcept;
   IncrementalConstriction& operator=(IncrementalConstriction&&) noexcept;
@@ -84,7 +90,7 @@ class IncrementalConstriction {
 
   Eigen::Index point_count() const;
   /// Triangles of the constricted boundary as it stands (before the
-  /// augmentation and flips surface() adds); 0 until the points span 3D. O(points).
+  /// augmentation and flips surface() adds); 0 until the points span 3D. O(1).
   Eigen::Index boundary_face_count() const;
   /// Batches repaired by re-constricting the whole triangulation.
   std::size_t wider_repairs() const;
