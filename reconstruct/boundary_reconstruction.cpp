@@ -63,10 +63,42 @@ void require_finite(const Eigen::MatrixXd& P) {
   if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
 }
 
-// The distinct points and their Delaunay triangulation, found side by side:
-// CGAL's insertion skips a repeated point, so the triangulation of all rows is
-// that of the distinct points, and merging duplicates (a sort) runs on the
-// other core meanwhile. The cells are then renumbered to the distinct points.
+// The Delaunay triangulation of the distinct points (unit-scaled), with
+// `first` and `map` as unique_points gives them. 3D: merging duplicates (a
+// hash pass) runs on the other core while CGAL triangulates all rows; its
+// insertion skips a repeated point, so that is the triangulation of the
+// distinct points, whose cells are then renumbered.
+DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& scaled,
+                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map) {
+  std::thread merge([&] { unique_points(points, first, map); });
+  DelaunayComplex<3> dt;
+  std::exception_ptr failure;
+  try {
+    dt = delaunay_complex(scaled);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  merge.join();
+  const auto distinct = static_cast<Eigen::Index>(first.size());
+  if (distinct < 4)
+    throw InvalidInput("need at least 4 distinct points for a closed polyhedron, got " + std::to_string(distinct));
+  if (failure) std::rethrow_exception(failure);
+  if (distinct < points.rows()) {
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(dt.cells(c, i))]);
+    dt.points.resize(distinct, 3);
+    for (Eigen::Index k = 0; k < distinct; ++k) dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
+  }
+  return dt;
+}
+
+// 2D: CGAL's insertion meets each repeated point at its vertex, which is all
+// the duplicate merging needed (no second pass over the points).
+DelaunayComplex<2> distinct_delaunay(const Eigen::MatrixX2d&, const Eigen::MatrixX2d& scaled,
+                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map) {
+  return delaunay_complex(scaled, first, map);
+}
+
 template <int D>
 struct Triangulated {
   Eigen::Matrix<double, Eigen::Dynamic, D> original;  // distinct points, input values
@@ -79,37 +111,15 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   require_finite(points);
   s.input_points = points.rows();
   const auto start = std::chrono::steady_clock::now();
-  const Eigen::Matrix<double, Eigen::Dynamic, D> scaled = unit_scaled<D>(points);
-  std::thread merge([&] {
-    Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(points.rows(), 3);
-    padded.leftCols(D) = points;
-    s.duplicates_merged = unique_points(padded, first, map);
-  });
   Triangulated<D> out;
-  std::exception_ptr failure;
-  try {
-    out.dt = delaunay_complex(scaled);
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  merge.join();
+  out.dt = distinct_delaunay(points, unit_scaled<D>(points), first, map);
   const auto distinct = static_cast<Eigen::Index>(first.size());
-  if (distinct < D + 1)
-    throw InvalidInput("need at least " + std::to_string(D + 1) + " distinct points for a closed " +
-                       (D == 2 ? "polygon" : "polyhedron") + ", got " + std::to_string(distinct));
-  if (failure) std::rethrow_exception(failure);
-  if (distinct < points.rows())  // else the map is the identity
-    for (Eigen::Index c = 0; c < out.dt.cells.rows(); ++c)
-      for (int i = 0; i <= D; ++i) out.dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(out.dt.cells(c, i))]);
+  s.duplicates_merged = points.rows() - distinct;
   if (distinct == points.rows()) {
-    out.original = points;  // dt.points are the scaled points already
+    out.original = points;
   } else {
     out.original.resize(distinct, D);
-    out.dt.points.resize(distinct, D);
-    for (Eigen::Index k = 0; k < distinct; ++k) {
-      out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
-      out.dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
-    }
+    for (Eigen::Index k = 0; k < distinct; ++k) out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
   }
   s.delaunay_seconds = seconds_since(start);
   return out;
