@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 
 namespace scanstation {
@@ -318,7 +319,8 @@ class Constrictor {
   Eigen::Index boundary_vertices_ = 0;  // of the points that are not exempt
   Eigen::Index target_ = 0;             // how many of them must reach the boundary
   EdgeCounter edges_;
-  QuaternaryHeap<Candidate> heap_;
+  // 2D: a tiered queue (same order); 3D keeps the plain heap.
+  std::conditional_t<D == 2, TieredQueue<Candidate>, QuaternaryHeap<Candidate>> heap_;
   // Bit i: the face opposite vertex i must stay; guide bits are filled in
   // lazily by fixed(), hence mutable.
   mutable std::vector<std::uint8_t> fixed_;
