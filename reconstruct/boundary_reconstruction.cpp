@@ -165,7 +165,8 @@ std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
 
 // How many rows of `wanted` (#K by D vertex indices) are faces of
 // `boundary` (#B by D), as unordered tuples.
-std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& boundary) {
+template <typename Faces>
+std::size_t faces_on(const Eigen::MatrixXi& wanted, const Faces& boundary) {
   if (wanted.rows() == 0) return 0;
   const auto sorted = [](Eigen::VectorXi row) {
     std::sort(row.data(), row.data() + row.size());
@@ -293,10 +294,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
   out.delaunay = dt.cells;
   fill_statistics(s, dt, c);
-  Eigen::MatrixXi edges(static_cast<Eigen::Index>(out.order.size()), 2);
-  for (std::size_t k = 0; k < out.order.size(); ++k)
-    edges.row(static_cast<Eigen::Index>(k)) << out.order[k], out.order[(k + 1) % out.order.size()];
-  s.kept_faces_on_boundary = faces_on(options.constriction.keep, edges);
+  s.kept_faces_on_boundary = faces_on(options.constriction.keep, c.boundary);
   return out;
 }
 

@@ -57,7 +57,8 @@ struct Candidate {
   int cell;
   std::uint32_t stamp;
   // Smallest key first; ties by cell number, so the order is deterministic.
-  bool operator<(const Candidate& o) const { return key != o.key ? key > o.key : cell > o.cell; }
+  // Without branches: the heap compares often, and which way goes is random.
+  bool operator<(const Candidate& o) const { return (key > o.key) | ((key == o.key) & (cell > o.cell)); }
 };
 
 // Algorithm 5.1 over the cells of a Delaunay complex. D = 2 or 3.
@@ -235,9 +236,12 @@ class Constrictor {
   }
 
   bool removable(int c) const {
-    if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     int faces[D + 1];
-    const int n = boundary_faces(c, faces);
+    return removable(c, faces, boundary_faces(c, faces));
+  }
+  // The same, given c's boundary faces.
+  bool removable(int c, const int (&faces)[D + 1], int n) const {
+    if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     for (int k = 0; k < n; ++k)
       if (fixed(c, faces[k])) return false;  // deleting c would delete a kept face
     if (n == 1) return !on_boundary_[static_cast<std::size_t>(vertex(c, faces[0]))];
@@ -249,9 +253,10 @@ class Constrictor {
   // Lines 7-8: a cell whose boundary changed goes (back) into the heap when
   // removable, keyed by its γ-indicator (3D, two faces: their sum, §5.3).
   void consider(int c) {
-    if (!kept_[static_cast<std::size_t>(c)] || !removable(c)) return;
+    if (!kept_[static_cast<std::size_t>(c)]) return;
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
+    if (!removable(c, faces, n)) return;
     heap_.push({key(c, faces, n), c, stamp_[static_cast<std::size_t>(c)]});
   }
 
