@@ -252,7 +252,6 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   Triangulated<2> triangulated = triangulate_distinct<2>(points, s, map, out.source);
   out.points = std::move(triangulated.original);
   const DelaunayComplex<2>& dt = triangulated.dt;
-  const Eigen::MatrixX2d& scaled = dt.points;
   const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
@@ -261,8 +260,8 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   s.constriction_seconds = seconds_since(start);
   if (!c.all_on_boundary && options.augment) {
     start = std::chrono::steady_clock::now();
-    const Augmentation a = augment_constriction(scaled, adjacency(dt), c.boundary, c.interior_vertices,
-                                                options.augmentation);
+    const Augmentation a = augment_constriction(Eigen::MatrixX2d(dt.points), adjacency(dt), c.boundary,
+                                                c.interior_vertices, options.augmentation);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
     s.carved = a.carved;

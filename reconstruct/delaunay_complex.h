@@ -15,12 +15,15 @@ namespace scanstation {
 ///            oriented (counter-clockwise in 2D; orientation(v0,v1,v2,v3) > 0 in 3D)
 /// neighbors  #C by D+1: neighbors(c, i) is the cell across the face of c
 ///            opposite its vertex i, or −1 across the convex hull
-/// In 2D the cells and neighbours are stored row by row: constriction reads a
-/// cell's three entries together, in no spatial order (one cache line, not three).
+/// In 2D everything is stored row by row: constriction reads a cell's three
+/// entries, and a point's two coordinates, together and in no spatial order
+/// (one cache line, not two or three).
 template <int D>
 struct DelaunayComplex {
-  using Cells = Eigen::Matrix<int, Eigen::Dynamic, D + 1, D == 2 ? Eigen::RowMajor : Eigen::ColMajor>;
-  Eigen::Matrix<double, Eigen::Dynamic, D> points;
+  static constexpr int kOrder = D == 2 ? Eigen::RowMajor : Eigen::ColMajor;
+  using Points = Eigen::Matrix<double, Eigen::Dynamic, D, kOrder>;
+  using Cells = Eigen::Matrix<int, Eigen::Dynamic, D + 1, kOrder>;
+  Points points;
   Cells cells;
   Cells neighbors;
 };
