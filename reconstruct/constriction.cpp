@@ -101,12 +101,9 @@ class Constrictor {
   }
 
   int vertex(int c, int i) const { return dt_.cells(c, i); }
-  // Without jumps (bitwise, not short-circuit): whether a face is on the
-  // boundary is close to a coin toss along the constriction front.
   bool boundary_face(int c, int i) const {
     const int n = dt_.neighbors(c, i);
-    const bool outside = n < 0;
-    return outside | !kept_[static_cast<std::size_t>(outside ? 0 : n)];
+    return n < 0 || !kept_[static_cast<std::size_t>(n)];
   }
 
   void mark_face(int c, int i, int delta) {
@@ -158,10 +155,8 @@ class Constrictor {
   // Which faces of a kept cell are on the boundary; returns their count.
   int boundary_faces(int c, int (&faces)[D + 1]) const {
     int n = 0;
-    for (int i = 0; i <= D; ++i) {
-      faces[n] = i;
-      n += boundary_face(c, i);
-    }
+    for (int i = 0; i <= D; ++i)
+      if (boundary_face(c, i)) faces[n++] = i;
     return n;
   }
 
