@@ -57,8 +57,7 @@ struct Candidate {
   int cell;
   std::uint32_t stamp;
   // Smallest key first; ties by cell number, so the order is deterministic.
-  // Without branches: the heap compares often, and which way goes is random.
-  bool operator<(const Candidate& o) const { return (key > o.key) | ((key == o.key) & (cell > o.cell)); }
+  bool operator<(const Candidate& o) const { return key != o.key ? key > o.key : cell > o.cell; }
 };
 
 // Algorithm 5.1 over the cells of a Delaunay complex. D = 2 or 3.

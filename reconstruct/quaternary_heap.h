@@ -42,12 +42,8 @@ class QuaternaryHeap {
       if (first >= n) break;
       std::size_t best = first;
       const std::size_t end = first + 4 < n ? first + 4 : n;
-      for (std::size_t c = first + 1; c < end; ++c) {
-        // Select without a jump: which child is best is a coin toss, and a
-        // mispredicted branch costs more than the arithmetic.
-        const std::size_t better = items_[best] < items_[c];
-        best ^= (best ^ c) & (std::size_t{0} - better);
-      }
+      for (std::size_t c = first + 1; c < end; ++c)
+        if (items_[best] < items_[c]) best = c;
       if (!(last < items_[best])) break;
       items_[i] = std::move(items_[best]);
       i = best;
