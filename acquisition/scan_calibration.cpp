@@ -23,9 +23,8 @@ long long seconds_since_epoch(const std::string& iso_time, const std::string& fi
   return static_cast<long long>(timegm(&utc));
 }
 
-TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const drivers::StationDescription& station,
-                                      double max_age_days, const std::string& now) {
-  const int laser_count = static_cast<int>(station.lasers.size());
+TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const StationFingerprint& station,
+                                      int laser_count, double max_age_days, const std::string& now) {
   check_calibration_matches(calibration, station);
   check_calibration_complete(calibration, CalibrationNeed::lasers, laser_count);
   const std::string file = calibration.source.empty() ? "the calibration" : calibration.source.string();
@@ -52,8 +51,9 @@ TurntableGeometry calibrated_geometry(const StationCalibration& calibration, con
     char text[160];
     std::snprintf(text, sizeof text, " is stale: its %s is %.1f days old, more than the %.0f days accepted", oldest.c_str(),
                   age_days, max_age_days);
+    const std::string part = oldest.substr(0, oldest.find_first_of(".["));  // "lasers[1].date": calibrate laser
     throw InvalidInput(file + text + ": recalibrate that part (`scanstation calibrate " +
-                       oldest.substr(0, oldest.find_first_of(".[")) +
+                       (part == "lasers" ? "laser" : part) +
                        " --force`, with `calibrate laser` after a new camera or turntable), or accept it with "
                        "--calibration-max-age DAYS (0: any age)");
   }
@@ -91,7 +91,31 @@ TurntableGeometry scan_geometry(const std::string& choice, const drivers::Statio
     throw InvalidInput("calibration file " + file + " does not exist" +
                        (choice.empty() ? " (named by the station description " + station.source.string() + ")" : "") +
                        ": make it with `scanstation calibrate camera|turntable|laser -o " + file + "`");
-  return calibrated_geometry(read_station_calibration(file), station, max_age_days, calibration_date());
+  return calibrated_geometry(read_station_calibration(file), station_fingerprint(station),
+                             static_cast<int>(station.lasers.size()), max_age_days, calibration_date());
+}
+
+TurntableGeometry replay_geometry(const std::filesystem::path& file, const SessionContents& session,
+                                  double max_age_days) {
+  const std::string replay = "replay of " + session.folder.string() + ": ";
+  const json& station = session.manifest.station;
+  const json* recorded = station.contains("fingerprint") ? &station["fingerprint"] : nullptr;
+  if (!recorded || !recorded->contains("hash") || !recorded->contains("devices") ||
+      !(*recorded)["devices"].value("lasers", json()).is_array())
+    throw InvalidInput(replay + "its manifest records no station.fingerprint (an older session): the devices it was "
+                       "scanned with are unknown, so " + file.string() + " cannot be checked against them; replay "
+                       "it with its recorded geometry");
+  if (!std::filesystem::exists(file)) throw InvalidInput(replay + "calibration file " + file.string() + " does not exist");
+  StationFingerprint fingerprint;
+  fingerprint.name = station.value("name", std::string());
+  fingerprint.hash = (*recorded)["hash"].get<std::string>();
+  fingerprint.devices = (*recorded)["devices"];
+  try {
+    return calibrated_geometry(read_station_calibration(file), fingerprint,
+                               static_cast<int>(fingerprint.devices["lasers"].size()), max_age_days, calibration_date());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(replay + e.what());
+  }
 }
 
 }  // namespace scanstation::acquisition

@@ -10,8 +10,12 @@
 //     description changing, so age is the only sign a program can see; the
 //     device changes that the description does show are the fingerprint's.
 // On the simulator a scan may instead use the simulator's true geometry.
+// A replay may reprocess a recorded session with another calibration file
+// (a recalibration after the scan), checked alike against the devices the
+// session recorded.
 #pragma once
 
+#include "acquisition/session.h"
 #include "acquisition/station_calibration.h"
 #include "acquisition/turntable_geometry.h"
 
@@ -29,15 +33,16 @@ inline constexpr double kCalibrationMaxAgeDays = 30.0;
 /// (as calibration_date() writes); throws InvalidInput naming `field` otherwise.
 long long seconds_since_epoch(const std::string& iso_time, const std::string& field);
 
-/// The checked geometry of `calibration` for a scan on `station`:
+/// The checked geometry of `calibration` for a scan on devices of
+/// fingerprint `station` with `laser_count` lasers:
 /// source = the calibration file, calibration = {"file", "fingerprint",
 /// "created", "updated", "dates": {"camera", "turntable", "lasers": [...]},
 /// "age_days"} (age of the oldest part at `now`).
 /// max_age_days  0 accepts any age
 /// now           ISO 8601 UTC time to age the parts against (calibration_date())
 /// Throws InvalidInput naming the file, the field and the command that fixes it.
-TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const drivers::StationDescription& station,
-                                      double max_age_days, const std::string& now);
+TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const StationFingerprint& station,
+                                      int laser_count, double max_age_days, const std::string& now);
 
 /// Which geometry a scan uses.
 /// choice           a calibration file, kSimulatorTruth, or "" for the
@@ -49,5 +54,15 @@ TurntableGeometry calibrated_geometry(const StationCalibration& calibration, con
 TurntableGeometry scan_geometry(const std::string& choice, const drivers::StationDescription& station,
                                 const std::optional<TurntableGeometry>& simulator_truth,
                                 double max_age_days = kCalibrationMaxAgeDays);
+
+/// The geometry to reprocess a recorded session with instead of the one it
+/// recorded: the calibration `file`, checked as a scan checks it
+/// (calibrated_geometry, aged against the current time) against the devices
+/// the session was scanned with (its manifest's station fingerprint).
+/// Throws InvalidInput naming the session and the file: a missing file, a
+/// session that records no fingerprint, other devices, an incomplete or a
+/// stale calibration.
+TurntableGeometry replay_geometry(const std::filesystem::path& file, const SessionContents& session,
+                                  double max_age_days = kCalibrationMaxAgeDays);
 
 }  // namespace scanstation::acquisition

@@ -1,5 +1,6 @@
 #include "acquisition/session.h"
 
+#include "acquisition/station_calibration.h"
 #include "core/errors.h"
 #include "core/io/station_geometry_json.h"
 #include "core/log.h"
@@ -294,6 +295,10 @@ json station_json(const drivers::StationDescription& d) {
                   {"turntable", {{"backend", d.turntable.backend},
                                  {"steps_per_rev", d.turntable.stepper.steps_per_rev()}}},
                   {"usb_simulated", d.usb_simulated}};
+  // What a calibration file must have been made for to replay the session
+  // with it (acquisition/scan_calibration.h, replay_geometry).
+  const StationFingerprint fingerprint = station_fingerprint(d);
+  station["fingerprint"] = {{"hash", fingerprint.hash}, {"devices", fingerprint.devices}};
   if (!d.source.empty() && fs::exists(d.source)) station["toml"] = io::read_file(d.source);
   return station;
 }

@@ -146,7 +146,8 @@ struct SessionContents {
 SessionContents read_session(const std::filesystem::path& folder);
 
 /// What the manifest records of a station: name, file (and its text),
-/// each role's backend, the camera format.
+/// each role's backend, the camera format, and its calibration fingerprint
+/// ("fingerprint": {"hash", "devices"}, station_calibration.h).
 nlohmann::json station_json(const drivers::StationDescription& station);
 
 /// "frames/step_0007_off.png", "frames/step_0007_laser1.png".

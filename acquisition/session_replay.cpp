@@ -63,7 +63,9 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   ScanResult result;
   result.problems = session.problems;
   result.parameters = options.parameters.value_or(session.manifest.parameters);
-  const TurntableGeometry& geometry = options.geometry ? *options.geometry : session.manifest.geometry;
+  result.geometry = options.geometry.value_or(session.manifest.geometry);
+  result.recorded_geometry = !options.geometry;
+  const TurntableGeometry& geometry = result.geometry;
   std::vector<int> lasers = session.lasers;
   if (options.geometry) {
     lasers.clear();
@@ -115,7 +117,11 @@ json write_scan_results(const fs::path& folder, const SessionContents& session, 
       {"session", session.folder.string()},
       {"rig", m.rig},
       {"object", {{"name", m.object.name}, {"mesh_file", m.object.mesh_file}}},
-      {"geometry_source", m.geometry.source},
+      {"geometry_source", result.geometry.source},
+      {"geometry",
+       {{"source", result.geometry.source},
+        {"recorded", result.recorded_geometry},
+        {"calibration", result.geometry.calibration}}},
       {"steps", {{"planned", m.steps}, {"recorded", session.steps.size()}, {"used", result.steps_used}}},
       {"complete", static_cast<int>(session.steps.size()) == m.steps && result.steps_used == m.steps},
       {"points", result.points.cloud.size()},

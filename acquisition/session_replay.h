@@ -38,6 +38,8 @@ struct ReplayOptions {
 ///                   that could not be used, each naming its file
 /// laser_agreement   with two lasers: the distance between their clouds
 ///                   (check_laser_agreement over the planned steps per turn)
+/// geometry          the geometry the points were triangulated with: the
+///                   recorded one (recorded_geometry) or ReplayOptions::geometry
 /// capture_seconds   the recorded steps' own duration (move start to last frame)
 /// process_seconds   wall time of the processing
 struct ScanResult {
@@ -46,6 +48,8 @@ struct ScanResult {
   int steps_used = 0;
   Eigen::Index outliers_removed = 0;
   LaserScanParameters parameters;
+  TurntableGeometry geometry;
+  bool recorded_geometry = true;
   std::vector<std::string> problems;
   std::optional<LaserAgreementCheck> laser_agreement;
   double capture_seconds = 0, process_seconds = 0;
@@ -65,7 +69,8 @@ std::optional<std::string> laser_agreement_warning(const ScanResult& result);
 
 /// Writes `folder`/points.ply (binary, with colours) and `folder`/report.json:
 /// session, steps planned/recorded/used, points per laser, outliers, the
-/// parameters, problems, laser agreement (null with one laser), capture and
+/// geometry used ("geometry_source", and "geometry": {"source", "recorded",
+/// "calibration"}), the parameters, problems, laser agreement (null with one laser), capture and
 /// processing seconds and their ratio.
 /// `extra` is merged into the report. Returns the report.
 nlohmann::json write_scan_results(const std::filesystem::path& folder, const SessionContents& session,

@@ -307,7 +307,10 @@ void write_station_calibration(const std::filesystem::path& file, const StationC
 }
 
 void check_calibration_matches(const StationCalibration& calibration, const drivers::StationDescription& station) {
-  const StationFingerprint now = station_fingerprint(station);
+  check_calibration_matches(calibration, station_fingerprint(station));
+}
+
+void check_calibration_matches(const StationCalibration& calibration, const StationFingerprint& now) {
   if (now.hash == calibration.station.hash) return;
   std::vector<std::string> diff;
   differences(calibration.station.devices, now.devices, "", diff);

@@ -113,6 +113,8 @@ void write_station_calibration(const std::filesystem::path& file, const StationC
 /// `station` has: names the calibration file and every field that differs
 /// (e.g. "camera.width: calibrated 640, station 1280").
 void check_calibration_matches(const StationCalibration& calibration, const drivers::StationDescription& station);
+/// The same against a fingerprint (e.g. the one a session recorded).
+void check_calibration_matches(const StationCalibration& calibration, const StationFingerprint& station);
 
 /// What a scan needs of a calibration.
 enum class CalibrationNeed { camera_pose, lasers, stereo };

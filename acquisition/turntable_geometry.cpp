@@ -6,6 +6,14 @@
 
 namespace scanstation::acquisition {
 
+TurntableGeometry simulator_truth(const PinholeCamera& camera, std::vector<LaserPlane> planes) {
+  TurntableGeometry geometry;
+  geometry.camera = camera;
+  geometry.lasers = std::move(planes);
+  geometry.source = "simulator truth";
+  return geometry;
+}
+
 nlohmann::json to_json(const TurntableGeometry& geometry) {
   nlohmann::json lasers = nlohmann::json::array();
   for (const LaserPlane& plane : geometry.lasers) lasers.push_back(scanstation::to_json(plane));

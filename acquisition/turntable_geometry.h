@@ -24,6 +24,10 @@ struct TurntableGeometry {
   nlohmann::json calibration;
 };
 
+/// A geometry known exactly, the simulator's truth: `camera` and the light
+/// `planes` (laser i at index i), source "simulator truth", no calibration.
+TurntableGeometry simulator_truth(const PinholeCamera& camera, std::vector<LaserPlane> planes);
+
 /// {"source", "camera": {...}, "lasers": [{...}, ...], "calibration": {...}}
 /// with the keys of core/io/station_geometry_json.h ("calibration" only when
 /// not null).

@@ -49,6 +49,25 @@ struct CapturedStep {
   std::vector<CapturedFrame> frames;
 };
 
+/// Keeps the camera streaming for a scope, stopping it however the scope ends.
+class CameraStreaming {
+ public:
+  explicit CameraStreaming(drivers::Camera& camera);
+  ~CameraStreaming();
+  CameraStreaming(const CameraStreaming&) = delete;
+  CameraStreaming& operator=(const CameraStreaming&) = delete;
+
+ private:
+  drivers::Camera& camera_;
+};
+
+/// The frames of one pose of the table and the scene, the camera streaming:
+/// the laser-off frame, then (with `lasers`) one frame per laser lit alone,
+/// each accepted by the frame gate once what it shows has settled (after
+/// `settled`, and after its laser switched). The lasers are left off.
+std::vector<CapturedFrame> capture_laser_frames(TurntableScanDevices& devices, drivers::Timestamp settled,
+                                                bool lasers = true);
+
 /// Called after each step; returns false to stop the scan after it.
 using StepSink = std::function<bool(const CapturedStep&)>;
 

@@ -8,10 +8,6 @@
 
 namespace scanstation::acquisition {
 
-namespace {
-
-// The 8-bit grey image the stripe is found in (16-bit frames scaled by 1/257,
-// the inverse of how Y16 widens 8-bit levels).
 cv::Mat grey8(const cv::Mat& frame) {
   cv::Mat grey;
   if (frame.type() == CV_8UC1) return frame;
@@ -23,10 +19,8 @@ cv::Mat grey8(const cv::Mat& frame) {
     cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
     return grey;
   }
-  throw InvalidInput("laser scan: frames must be 8-bit or 16-bit grey or 8-bit BGR");
+  throw InvalidInput("camera frames must be 8-bit or 16-bit grey or 8-bit BGR");
 }
-
-}  // namespace
 
 std::vector<LaserScanPoints> step_points(const StepFrames& frames, const TurntableGeometry& geometry,
                                          const LaserScanParameters& parameters) {

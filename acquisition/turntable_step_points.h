@@ -29,6 +29,11 @@ struct StepFrames {
 std::vector<LaserScanPoints> step_points(const StepFrames& frames, const TurntableGeometry& geometry,
                                          const LaserScanParameters& parameters);
 
+/// The 8-bit grey image of a camera frame (16-bit grey scaled by 1/257, the
+/// inverse of how Y16 widens 8-bit levels; BGR converted). Throws
+/// InvalidInput for other types.
+cv::Mat grey8(const cv::Mat& frame);
+
 /// Appends `from` to `to` (positions, colours, confidences).
 void append_points(LaserScanPoints& to, const LaserScanPoints& from);
 

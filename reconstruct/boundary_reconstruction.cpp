@@ -37,6 +37,12 @@ ReconstructionOptions renumbered(const ReconstructionOptions& options, const std
       out.constriction.keep(k, i) = static_cast<int>(map[static_cast<std::size_t>(v)]);
     }
   if (out.constriction.keep.cols() == 3) out.augmentation.keep = out.constriction.keep;
+  for (SightLine& line : out.sight_lines) {
+    if (line.point < 0 || static_cast<std::size_t>(line.point) >= map.size())
+      throw InvalidInput("sight line: point index " + std::to_string(line.point) + " out of range [0, " +
+                         std::to_string(map.size()) + ")");
+    line.point = static_cast<int>(map[static_cast<std::size_t>(line.point)]);
+  }
   return out;
 }
 
@@ -237,8 +243,14 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   const ReconstructionOptions options = renumbered(given, map);
 
   const auto start = std::chrono::steady_clock::now();
+  ConstrictionOptions constriction = constriction_options(options);
+  if (!options.sight_lines.empty()) {
+    constriction.carve_first = line_of_sight_depths(dt, triangulated.original, options.sight_lines);
+    s.sight_line_cells = static_cast<std::size_t>(std::count_if(
+        constriction.carve_first.begin(), constriction.carve_first.end(), [](int depth) { return depth >= 0; }));
+  }
   Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton)
-                                               : constrict(dt, constriction_options(options));
+                                               : constrict(dt, constriction);
   s.constriction_seconds = seconds_since(start);
   out.mesh.vertices.positions = triangulated.original;
   finish_surface(dt, c, options, out);

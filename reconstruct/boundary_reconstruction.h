@@ -8,6 +8,7 @@
 #include "reconstruct/augmentation.h"
 #include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
+#include "reconstruct/line_of_sight.h"
 #include "reconstruct/voronoi_skeleton.h"
 
 #include <optional>
@@ -45,6 +46,10 @@ struct ReconstructionOptions {
   /// random sample of a convex surface, where area flips find nothing);
   /// nullopt: keep constriction's triangles as they are.
   std::optional<FlipCriterion> flips = FlipCriterion::area;
+  /// 3D: where the points were seen from (indices into the input points):
+  /// the Delaunay cells these lines of sight cross are carved first
+  /// (reconstruct/line_of_sight.h, ConstrictionOptions::carve_first).
+  std::vector<SightLine> sight_lines;
 };
 
 struct BoundaryStatistics {
@@ -61,6 +66,7 @@ struct BoundaryStatistics {
   std::size_t kept_faces_on_boundary = 0; ///< of the faces asked to stay (§5.7), how many are on the boundary
   std::size_t flips = 0;                  ///< edge flips made after constriction
   std::size_t guide_faces = 0;            ///< faces kept by γ-guided constriction
+  std::size_t sight_line_cells = 0;       ///< Delaunay cells crossed by the lines of sight
   double flip_seconds = 0.0;
   double delaunay_seconds = 0.0;
   double constriction_seconds = 0.0;

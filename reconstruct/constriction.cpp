@@ -56,8 +56,13 @@ struct Candidate {
   double key;
   int cell;
   std::uint32_t stamp;
-  // Smallest key first; ties by cell number, so the order is deterministic.
-  bool operator<(const Candidate& o) const { return key != o.key ? key > o.key : cell > o.cell; }
+  int rank;  // ConstrictionOptions::carve_first, −1: none
+  // Ranked cells first, the lowest rank first, then the smallest key; ties
+  // by cell number, so the order is deterministic.
+  bool operator<(const Candidate& o) const {
+    if (rank != o.rank) return o.rank >= 0 && (rank < 0 || o.rank < rank);
+    return key != o.key ? key > o.key : cell > o.cell;
+  }
 };
 
 // Algorithm 5.1 over the cells of a Delaunay complex. D = 2 or 3.
@@ -82,12 +87,12 @@ class Constrictor {
     while (!heap_.empty()) {
       const bool done = boundary_vertices_ == target_;
       const Candidate top = heap_.top();
-      if (done && !continue_after_all(top.key, extra)) break;
+      if (done && top.rank < 0 && !continue_after_all(top.key, extra)) break;
       heap_.pop();
       if (!kept_[static_cast<std::size_t>(top.cell)] || stamp_[static_cast<std::size_t>(top.cell)] != top.stamp) continue;
       if (!removable(top.cell)) continue;  // line 5: deletions elsewhere may have blocked it
       remove(top.cell);
-      if (done) ++extra;
+      if (done && top.rank < 0) ++extra;
       if (options_.progress) options_.progress(static_cast<double>(boundary_vertices_) / static_cast<double>(target_));
     }
     return result();
@@ -119,6 +124,10 @@ class Constrictor {
         const int* f = kFace3[i];
         edges_.add(vertex(c, f[a]), vertex(c, f[(a + 1) % 3]), delta);
       }
+  }
+
+  int carve_rank(int c) const {
+    return options_.carve_first.empty() ? -1 : options_.carve_first[static_cast<std::size_t>(c)];
   }
 
   bool exempt(int v) const { return start_ && !start_->exempt.empty() && start_->exempt[static_cast<std::size_t>(v)]; }
@@ -200,6 +209,9 @@ class Constrictor {
 
   // §5.7: faces that must stay, flagged per cell face.
   void mark_kept_faces() {
+    if (!options_.carve_first.empty() && options_.carve_first.size() != static_cast<std::size_t>(cells_))
+      throw InvalidInput("cells to carve first: one flag per Delaunay cell expected, got " +
+                         std::to_string(options_.carve_first.size()) + " for " + std::to_string(cells_) + " cells");
     if (options_.guide_c1 || options_.keep.rows() > 0) fixed_.assign(static_cast<std::size_t>(cells_), 0);
     if (D == 3 && options_.guide_c1) guide_known_.assign(static_cast<std::size_t>(cells_), 0);
     if (options_.keep.rows() == 0) return;
@@ -227,9 +239,12 @@ class Constrictor {
       if (!found[k])
         throw InvalidInput("kept face " + std::to_string(k) +
                            " is not a face of the Delaunay triangulation; constrained constriction keeps Delaunay faces");
+    if (!options_.carve_first.empty()) kept_by_user_ = fixed_;
   }
   bool fixed(int c, int i) const {
     if (fixed_.empty()) return false;
+    // A cell known to be outside is held by the user's faces only.
+    if (carve_rank(c) >= 0) return !kept_by_user_.empty() && kept_by_user_[static_cast<std::size_t>(c)] >> i & 1u;
     if (!guide_known_.empty() && !(guide_known_[static_cast<std::size_t>(c)] >> i & 1u)) decide_guide(c, i);
     return fixed_[static_cast<std::size_t>(c)] >> i & 1u;
   }
@@ -256,7 +271,7 @@ class Constrictor {
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
     if (!removable(c, faces, n)) return;
-    heap_.push({key(c, faces, n), c, stamp_[static_cast<std::size_t>(c)]});
+    heap_.push({key(c, faces, n), c, stamp_[static_cast<std::size_t>(c)], carve_rank(c)});
   }
 
   double key(int c, const int (&faces)[D + 1], int n) const {
@@ -328,6 +343,7 @@ class Constrictor {
   // Bit i: the face opposite vertex i must stay; guide bits are filled in
   // lazily by fixed(), hence mutable.
   mutable std::vector<std::uint8_t> fixed_;
+  std::vector<std::uint8_t> kept_by_user_;  // the §5.7 bits alone, when cells are carved first
   mutable std::vector<std::uint8_t> guide_known_;
   mutable std::size_t guided_ = 0;
 };

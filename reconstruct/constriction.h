@@ -38,6 +38,13 @@ struct ConstrictionOptions {
   /// at least guide_c0 and one at least guide_c1; nullopt: off.
   std::optional<double> guide_c1;
   double guide_c0 = 0.0;
+  /// One entry per Delaunay cell (or empty): −1, or the rank of a cell known
+  /// to lie outside the object, e.g. its depth along a line of sight
+  /// (reconstruct/line_of_sight.h). Removable ranked cells go before all
+  /// others, lower ranks first — the carving advances from where the camera
+  /// looked in — the γ-guide does not hold them, and once every point is on
+  /// the boundary constriction goes on while one is removable.
+  std::vector<int> carve_first;
   /// Fraction of the points on the boundary so far.
   ProgressCallback progress;
 };

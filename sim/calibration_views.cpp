@@ -1,24 +1,12 @@
 #include "sim/calibration_views.h"
 
 #include "core/errors.h"
-
-#include <opencv2/imgproc.hpp>
+#include "sim/supersampling.h"
 
 #include <cmath>
 #include <limits>
 
 namespace scanstation::sim {
-
-PinholeCamera supersampled(const PinholeCamera& camera, int k) {
-  PinholeCamera fine = camera;
-  fine.width *= k;
-  fine.height *= k;
-  fine.fx *= k;
-  fine.fy *= k;
-  fine.cx = k * camera.cx + 0.5 * (k - 1);
-  fine.cy = k * camera.cy + 0.5 * (k - 1);
-  return fine;
-}
 
 ChessboardTarget standing_board(int columns, int rows, double square, double tilt, const Point3& middle) {
   ChessboardTarget b;
@@ -77,19 +65,12 @@ BoardFrames render_board(Scene scene, const BoardPlacement& placement, const Pin
   scene.board = placement.board;
   const SceneRenderer renderer(std::move(scene));
   const int k = std::max(1, supersampling);
-  SensorModel sensor;
-  sensor.defocus_sigma *= k;
   const RenderedView view = renderer.cast(supersampled(camera, k), placement.angle);
-  const auto frame = [&](const std::vector<int>& lasers, std::uint64_t noise) {
-    cv::Mat small;
-    cv::resize(renderer.expose(view, lasers, noise, sensor), small, {camera.width, camera.height}, 0, 0, cv::INTER_AREA);
-    return small;
-  };
   BoardFrames frames;
-  frames.laser_off = frame({}, seed);
+  frames.laser_off = expose_supersampled(renderer, view, camera, k, {}, seed);
   if (with_lasers)
     for (std::size_t l = 0; l < renderer.scene().lasers.size(); ++l)
-      frames.laser_on.push_back(frame({static_cast<int>(l)}, seed + 1 + l));
+      frames.laser_on.push_back(expose_supersampled(renderer, view, camera, k, {static_cast<int>(l)}, seed + 1 + l));
   return frames;
 }
 

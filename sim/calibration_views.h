@@ -1,7 +1,9 @@
 // Calibration views on the simulator: the chessboard standing on the platter
 // at the poses a careful operator would choose, rendered with area-averaged
 // pixels (one ray per pixel centre aliases the board's edges and biases the
-// corners: fx 0.6% off; 2× supersampling brings it within 0.2%).
+// corners: fx 0.6% off; 2× supersampling brings it within 0.2%). The
+// calibrate command captures them through the simulated station's devices
+// (sim/calibration_station.h); render_board() renders one directly.
 #pragma once
 
 #include "sim/scene_renderer.h"
@@ -10,10 +12,6 @@
 #include <vector>
 
 namespace scanstation::sim {
-
-/// The camera at k times the resolution: pixel (u, v) of `camera` covers the
-/// k × k pixels of the result around it, so averaging them integrates its area.
-PinholeCamera supersampled(const PinholeCamera& camera, int k);
 
 /// A board with inner_corners (columns × rows) of `square` size, its middle at
 /// `middle` (object frame), rows running down and tilted back by `tilt`

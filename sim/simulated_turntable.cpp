@@ -17,12 +17,10 @@ TurntableLaserRig station_rig(const drivers::StationDescription& station) {
   return rig;
 }
 
-acquisition::TurntableGeometry truth_geometry(const TurntableLaserRig& rig) {
-  acquisition::TurntableGeometry geometry;
-  geometry.camera = rig.camera;
-  for (const LineLaser& laser : rig.lasers) geometry.lasers.push_back(laser.plane);
-  geometry.source = "simulator truth";
-  return geometry;
+std::vector<LaserPlane> light_planes(const TurntableLaserRig& rig) {
+  std::vector<LaserPlane> planes;
+  for (const LineLaser& laser : rig.lasers) planes.push_back(laser.plane);
+  return planes;
 }
 
 SimulatedTurntable simulated_turntable(ScanObject object, const drivers::StationDescription& station,

@@ -9,7 +9,6 @@
 // actuators set.
 #pragma once
 
-#include "acquisition/turntable_geometry.h"
 #include "drivers/station_description.h"
 #include "sim/devices/scene_frame_source.h"
 #include "sim/scan_objects.h"
@@ -35,8 +34,10 @@ inline constexpr double kSimulatedPlatterRadius = 60.0;
 /// Throws InvalidInput for a station with no laser or more than two.
 TurntableLaserRig station_rig(const drivers::StationDescription& station);
 
-/// The rig's true camera and light planes (source "simulator truth").
-acquisition::TurntableGeometry truth_geometry(const TurntableLaserRig& rig);
+/// The rig's true light planes, laser i at index i (with rig.camera, the
+/// simulator's truth: acquisition::simulator_truth turns them into the
+/// geometry a scan triangulates with; sim stops at the driver interfaces).
+std::vector<LaserPlane> light_planes(const TurntableLaserRig& rig);
 
 /// The station's rig (station_rig) with `object` on its platter; the object
 /// must fit the rig (scan_object places built-ins and mesh files so).

@@ -3,6 +3,7 @@
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <algorithm>
 #include <array>
@@ -20,6 +21,11 @@ namespace scanstation {
 namespace {
 
 using Point = Eigen::Vector3d;
+
+// Step 5 moves the points around a macro edge's midpoint at most this many
+// macro edge lengths, unless max_move is smaller; an exact solution that
+// folds the surface, at most half an edge length (see join_macro_edge).
+constexpr double kReach = 100.0, kFoldReach = 0.5;
 
 // Control points of a micro triangle (A, B, O): A = b300, B = b030, O = b003.
 constexpr int A_corner = control_index(3, 0, 0), B_corner = control_index(0, 3, 0), O_corner = control_index(0, 0, 3);
@@ -168,13 +174,11 @@ enum Unknown { Z, Ya, Yb, Yf, Yg, Xa, Xb, Xa_there, Xb_there, unknowns };
 using Constraints = Eigen::Matrix<double, 8, unknowns>;
 using Points = Eigen::Matrix<double, unknowns, 3>;
 
-// The closest point of the well-posed part of all eight constraints
-// (pseudo-inverse, small singular values dropped), for (nearly) dependent
-// constraints; true when they were all met all the same.
-bool closest_solution(Points& x, const Points& old, double phi, double psi, const HalfEdge& a, const HalfEdge& b,
-                      double reach) {
+// All eight constraints of Step 5 as A x = rhs on the nine points.
+Constraints step5_constraints(double phi, double psi, const HalfEdge& a, const HalfEdge& b,
+                              Eigen::Matrix<double, 8, 3>& rhs) {
   Constraints A = Constraints::Zero();
-  Eigen::Matrix<double, 8, 3> rhs = Eigen::Matrix<double, 8, 3>::Zero();
+  rhs.setZero();
   const auto mean_row = [&A](int row, Unknown of, Unknown first, Unknown second) {
     A(row, of) = 1.0;
     A(row, first) = -0.5;
@@ -202,12 +206,66 @@ bool closest_solution(Points& x, const Points& old, double phi, double psi, cons
   };
   half_edge_rows(4, a, Ya, Xa, Xa_there);
   half_edge_rows(6, b, Yb, Xb, Xb_there);
+  return A;
+}
+
+// The damped least-squares step min |Aδ − r|² + τ|δ|² whose largest point
+// move is `reach` (bisection on log τ): the constraints met as far as a
+// bounded move allows.
+Points damped_step(const Constraints& A, const Eigen::Matrix<double, 8, 3>& r, double reach) {
+  using Square = Eigen::Matrix<double, unknowns, unknowns>;
+  const Square normal = A.transpose() * A;
+  const Points projected = A.transpose() * r;
+  const double scale = normal.diagonal().maxCoeff();
+  double lo = std::log(1e-12 * scale), hi = std::log(1e6 * scale);
+  Points step = Points::Zero();
+  for (int iteration = 0; iteration < 48; ++iteration) {
+    const double mid = (lo + hi) / 2.0;
+    const Points trial = (normal + std::exp(mid) * Square::Identity()).ldlt().solve(projected);
+    if (trial.rowwise().norm().maxCoeff() <= reach) {
+      step = trial;
+      hi = mid;
+    } else {
+      lo = mid;
+    }
+  }
+  return step;
+}
+
+// The closest point of the well-posed part of all eight constraints
+// (pseudo-inverse, small singular values dropped), for (nearly) dependent
+// constraints, or the damped step when that would move a point farther than
+// `reach`; true when the constraints were all met all the same.
+bool closest_solution(Points& x, const Points& old, double phi, double psi, const HalfEdge& a, const HalfEdge& b,
+                      double reach) {
+  Eigen::Matrix<double, 8, 3> rhs;
+  const Constraints A = step5_constraints(phi, psi, a, b, rhs);
+  const Eigen::Matrix<double, 8, 3> r = rhs - A.lazyProduct(old);
   Eigen::CompleteOrthogonalDecomposition<Constraints> cod;
   cod.setThreshold(1e-6);
   cod.compute(A);
-  x = old + cod.solve(rhs - A.lazyProduct(old));
-  return (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm()) &&
-         (x - old).rowwise().norm().maxCoeff() <= reach;
+  x = old + cod.solve(r);
+  if ((x - old).rowwise().norm().maxCoeff() <= reach)
+    return (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm());
+  x = old + damped_step(A, r, reach);
+  return false;
+}
+
+// Whether the patches on the two sides of a macro half edge fold onto one
+// side of it somewhere between its ends (tested at s = ¼, ½, ¾ and at Z):
+// M = (V, K, Y, Z) the edge row, L and R the next rows on either side. The
+// tangent planes agree there (Step 5), so a fold is a normal turned by π.
+bool folds(const Point* M, const Point* L, const Point* R) {
+  const auto quadratic = [](const Point& p0, const Point& p1, const Point& p2, double t) -> Point {
+    return (1 - t) * (1 - t) * p0 + 2 * t * (1 - t) * p1 + t * t * p2;
+  };
+  for (const double t : {0.25, 0.5, 0.75, 1.0}) {
+    const Point along = quadratic(M[1] - M[0], M[2] - M[1], M[3] - M[2], t);
+    const Point here = quadratic(L[0] - M[0], L[1] - M[1], L[2] - M[2], t);
+    const Point there = quadratic(R[0] - M[0], R[1] - M[1], R[2] - M[2], t);
+    if (along.cross(here).dot(along.cross(there)) >= 0.0) return true;
+  }
+  return false;
 }
 
 // Step 5 for the macro edge c of this side s (the other side t, its edge,
@@ -221,12 +279,17 @@ bool closest_solution(Points& x, const Points& old, double phi, double psi, cons
 // half edge to V_c+1 must end in μ(φ, ψ), μ = −1/(1 + 2(φ + ψ)), for the two
 // to share one tangent plane at Z. Y_f = (X_a + X_b)/2, Y_g likewise
 // (Equation 9.10a on the edges to O, O').
-bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, EdgeSide& here, EdgeSide& there) {
+bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, double max_move, EdgeSide& here, EdgeSide& there) {
   const int n = (c + 1) % 3;
   // The subdivided points, this side's macro edge as reference.
   const Point &z_old = s.Z[c], &ya_old = s.Ya[c], &yb_old = s.Yb[c], &yf_old = s.Y[c], &yg_old = t.Y;
   const Point u_old[6] = {ya_old, yb_old, s.Xa[c], s.Xb[c], t.Xb, t.Xa};  // Y_a, Y_b, X_a, X_b, X_a', X_b'
-  const Eigen::Vector2d at_Z_a = end_coefficients(z_old - ya_old, yf_old - ya_old, yg_old - ya_old);
+  Eigen::Vector2d at_Z_a = end_coefficients(z_old - ya_old, yf_old - ya_old, yg_old - ya_old);
+  // Y_f and Y_g on one side of the edge (φψ ≤ 0) is a fold in the
+  // subdivided patches themselves, as over a cap-shaped macro triangle; the
+  // fit would keep it. Then the star is made C¹ instead: φ = ψ = −½, Z the
+  // midpoint of Y_f and Y_g, with the halves' tangents in line (μ = 1).
+  if (!(at_Z_a.x() * at_Z_a.y() > 0.0)) at_Z_a = Eigen::Vector2d::Constant(-0.5);
   const double phi = at_Z_a.x(), psi = at_Z_a.y();
   const Eigen::Vector2d at_Z_b = -at_Z_a / (1.0 + 2.0 * (phi + psi));
   const HalfEdge a = half_edge(s.V[c], s.K[c], s.N[c], t.N_end, at_Z_a);
@@ -278,7 +341,7 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, EdgeSide& here
   null_norm = std::sqrt(null_norm);
 
   const Point old[unknowns] = {z_old, ya_old, yb_old, yf_old, yg_old, u_old[2], u_old[3], u_old[4], u_old[5]};
-  const double reach = 100.0 * (s.V[n] - s.V[c]).norm();
+  const double reach = std::min(kReach, max_move) * (s.V[n] - s.V[c]).norm();
   Point x[unknowns];
   bool met = false;
   if (null_norm > 1e-12 * row_norms) {
@@ -337,6 +400,33 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, EdgeSide& here
     for (int k = 0; k < unknowns; ++k) old_rows.row(k) = old[k].transpose();
     met = closest_solution(x_rows, old_rows, phi, psi, a, b, reach);
     for (int k = 0; k < unknowns; ++k) x[k] = x_rows.row(k).transpose();
+  }
+  // Meeting the constraints can demand a fold where the vertex coefficients
+  // of (9.3) blow up (a thin macro triangle at a vertex, as near the axis of
+  // a turntable scan): the patches share their tangent planes with normals
+  // turned by π, a spike in the picture. Such an edge is joined by the
+  // damped step instead, with the largest move halved from half an edge
+  // length until the fold is gone — not G¹ there, and counted.
+  const auto folded = [&] {
+    const Point Ma[4] = {s.V[c], s.K[c], x[Ya], x[Z]}, La[3] = {s.N[c], x[Xa], x[Yf]},
+                Ra[3] = {t.N_end, x[Xa_there], x[Yg]};
+    const Point Mb[4] = {s.V[n], s.Kn[c], x[Yb], x[Z]}, Lb[3] = {s.N[n], x[Xb], x[Yf]},
+                Rb[3] = {t.N_start, x[Xb_there], x[Yg]};
+    return folds(Ma, La, Ra) || folds(Mb, Lb, Rb);
+  };
+  if (folded()) {
+    met = false;
+    Points old_rows;
+    for (int k = 0; k < unknowns; ++k) old_rows.row(k) = old[k].transpose();
+    Eigen::Matrix<double, 8, 3> rhs;
+    const Constraints A = step5_constraints(phi, psi, a, b, rhs);
+    const Eigen::Matrix<double, 8, 3> r = rhs - A.lazyProduct(old_rows);
+    const double length = (s.V[n] - s.V[c]).norm();
+    for (double bound = kFoldReach * length; bound >= kFoldReach * length / 64.0; bound /= 2.0) {
+      const Points x_rows = old_rows + damped_step(A, r, bound);
+      for (int k = 0; k < unknowns; ++k) x[k] = x_rows.row(k).transpose();
+      if (!folded()) break;
+    }
   }
   here = {x[Z], x[Ya], x[Yb], x[Yf], x[Xa], x[Xb]};
   there = {x[Z], x[Yb], x[Ya], x[Yg], x[Xb_there], x[Xa_there]};
@@ -400,14 +490,14 @@ void prefault(const void* data, std::size_t bytes) {
 }  // namespace
 
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
-                        const MeshEdges& edges, double tension) {
+                        const MeshEdges& edges, double tension, double max_move) {
   BezierSurface surface;
-  six_split(V, F, N, edges, tension, surface);
+  six_split(V, F, N, edges, tension, surface, max_move);
   return surface;
 }
 
 void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N, const MeshEdges& edges,
-               double tension, BezierSurface& surface) {
+               double tension, BezierSurface& surface, double max_move) {
   // One pass over the macro triangles, each written once, complete. Face f
   // solves Step 5 on its edges to faces g > f and leaves g's side of the
   // result for g; its edges to g < f were solved when g came.
@@ -437,7 +527,7 @@ void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen
         continue;
       }
       slot[3 * g + d] = solved;
-      if (!join_macro_edge(own, c, far_side(macro_patch(V, F, N, g, tension), d), here[c], left_for_later[solved++]))
+      if (!join_macro_edge(own, c, far_side(macro_patch(V, F, N, g, tension), d), max_move, here[c], left_for_later[solved++]))
         ++surface.dependent_edges;
       sides[c] = &here[c];
     }

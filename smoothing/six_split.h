@@ -8,6 +8,7 @@
 #include "smoothing/mesh_edges.h"
 
 #include <Eigen/Core>
+#include <limits>
 
 namespace scanstation {
 
@@ -28,7 +29,13 @@ namespace scanstation {
 /// Solved once per macro edge in closed form (the two (9.3b) rows give Y_a,
 /// Y_b; the rest is a 3×4 system in the centres with a one-dimensional null
 /// space, see docs/design.md), the pseudo-inverse where the constraints are
-/// dependent (counted in dependent_edges).
+/// dependent (counted in dependent_edges). Where the exact solution folds
+/// the surface (the two sides' normals turned by π somewhere along the edge,
+/// which thin macro triangles at a vertex can demand), or moves a point
+/// farther than max_move macro edge lengths (a bulge), the edge is joined by
+/// a damped least-squares step of bounded move instead: not G¹ there, and
+/// counted in dependent_edges too. max_move = ∞ keeps every non-folding
+/// exact solution, as the thesis.
 /// Steps 6–7: Q at the vertex edges from Equation (9.13a), Q at the midpoint
 /// edges the mean of their neighbours (9.12a), O = (Q0 + Q2 + Q4)/3 — the
 /// domain ratios of the split, so the interior joins C¹.
@@ -37,12 +44,13 @@ namespace scanstation {
 /// per macro triangle: 1440 bytes of patches and 24 of `macro` kept, 228 more
 /// while building.
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
-                        const MeshEdges& edges, double tension = 1.0 / 3.0);
+                        const MeshEdges& edges, double tension = 1.0 / 3.0,
+                        double max_move = std::numeric_limits<double>::infinity());
 
 /// The same into `surface`, replacing what it held and reusing its memory (no
 /// new pages when it held at least as many patches), for repeated smoothing
 /// of one mesh or of meshes of similar size.
 void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N, const MeshEdges& edges,
-               double tension, BezierSurface& surface);
+               double tension, BezierSurface& surface, double max_move = std::numeric_limits<double>::infinity());
 
 }  // namespace scanstation

@@ -8,6 +8,7 @@
 #include "smoothing/two_split.h"
 
 #include <chrono>
+#include <cmath>
 
 namespace scanstation {
 
@@ -55,7 +56,8 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   start = std::chrono::steady_clock::now();
   const ThreeSplitOptions three_split_options{options.least_squares_ratio, options.tension};
   switch (options.scheme) {
-    case SplitScheme::six_split: result.surface = six_split(V, mesh.faces, N, edges, options.tension); break;
+    case SplitScheme::six_split: result.surface = six_split(V, mesh.faces, N, edges, options.tension, options.max_move);
+      break;
     case SplitScheme::three_split: result.surface = three_split(V, mesh.faces, N, edges, three_split_options); break;
     case SplitScheme::adaptive_two_split: {
       const std::vector<TwoSplitPair> pairs = two_split_pairs(V, mesh.faces, edges, options.min_angle);
@@ -91,6 +93,8 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
               {"samples", s.g1.samples},
               {"unmatched_edges", s.g1.unmatched_edges}}},
       {"oscillation", {{"max_relative", s.oscillation.max_relative}, {"mean_relative", s.oscillation.mean_relative}}}};
+  if (options.scheme == SplitScheme::six_split && std::isfinite(options.max_move))
+    report["max_move"] = options.max_move;
   if (options.scheme != SplitScheme::six_split)
     report["ratio"] = options.least_squares_ratio ? "least-squares" : "one";
   if (options.scheme == SplitScheme::adaptive_two_split) {

@@ -11,6 +11,7 @@
 #include "smoothing/vertex_normals.h"
 
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ std::string scheme_name(SplitScheme scheme);
 /// tension       the Step-2 constant (1/3 in the thesis)
 /// least_squares_ratio  three-/two-split Step 5: the free ratio by least squares
 /// min_angle     adaptive two-split: triangles with a smaller angle (degrees)
+/// max_move      six-split Step 5: the largest move of a control point, in
+///               macro edge lengths, beyond which an edge is joined
+///               approximately rather than bulge (∞: exact, as the thesis)
 struct SurfaceSmoothingOptions {
   SplitScheme scheme = SplitScheme::six_split;
   NormalWeighting normals = NormalWeighting::area;
@@ -34,6 +38,7 @@ struct SurfaceSmoothingOptions {
   double tension = 1.0 / 3.0;
   bool least_squares_ratio = true;
   double min_angle = 20.0;
+  double max_move = std::numeric_limits<double>::infinity();
 };
 
 /// surface             the cubic patches

@@ -11,6 +11,8 @@
 #include "smoothing/tessellation.h"
 
 #include <chrono>
+#include <numbers>
+#include <numeric>
 
 namespace scanstation::station {
 
@@ -40,11 +42,48 @@ struct FinalBoundary {
   std::string error;  // why there is none
 };
 
+// Where each point fed was seen from: the camera centre of its step, turned
+// back by the step's angle like the points, one entry per step with the
+// number of points it gave.
+struct StepViews {
+  std::vector<Eigen::Vector3d> centres;  // platter object frame
+  std::vector<Eigen::Index> counts;
+
+  void add(const PinholeCamera& camera, double angle_deg, const std::vector<acquisition::LaserScanPoints>& clouds) {
+    centres.push_back(turntable_rotation(angle_deg * std::numbers::pi / 180.0).transpose() * camera.centre());
+    Eigen::Index n = 0;
+    for (const acquisition::LaserScanPoints& cloud : clouds) n += cloud.cloud.size();
+    counts.push_back(n);
+  }
+
+  // Lines of sight of the final points in their own coordinates, when they
+  // are the points fed in the same order (no outliers removed); else none.
+  std::vector<SightLine> sight_lines(const acquisition::ScanResult& result, const acquisition::ObjectPlacement& placement) const {
+    std::vector<SightLine> lines;
+    const Eigen::Index total = std::accumulate(counts.begin(), counts.end(), Eigen::Index{0});
+    if (result.outliers_removed > 0 || total != result.points.cloud.size()) return lines;
+    lines.reserve(static_cast<std::size_t>(total));
+    int point = 0;
+    for (std::size_t step = 0; step < centres.size(); ++step) {
+      const Eigen::Vector3d view = (centres[step] - placement.translation) / placement.scale;  // own_coordinates
+      for (Eigen::Index k = 0; k < counts[step]; ++k) lines.push_back({point++, view});
+    }
+    return lines;
+  }
+};
+
 FinalBoundary final_boundary(const LiveBoundary* live, bool live_is_valid, const acquisition::ScanResult& result,
-                             const std::string& why_not_live) {
+                             const std::string& why_not_live, const std::vector<SightLine>& sight_lines) {
   FinalBoundary b;
   try {
-    if (live_is_valid) {
+    if (!sight_lines.empty()) {
+      // The live boundary is the view during the scan; the result carves
+      // what the camera saw to be empty first (reconstruct/line_of_sight.h).
+      ReconstructionOptions options = surface_defaults();
+      options.sight_lines = sight_lines;
+      b.surface = reconstruct_surface(result.points.cloud.positions, options);
+      b.built = "from scratch, lines of sight carved first";
+    } else if (live_is_valid) {
       b.surface = live->constriction().surface();
       b.built = live->steps() > 0 ? "incremental" : "none";
     } else {
@@ -72,6 +111,12 @@ TriangleMesh boundary_mesh(const FinalBoundary& b, const acquisition::ScanResult
 
 }  // namespace
 
+SurfaceSmoothingOptions station_smoothing() {
+  SurfaceSmoothingOptions options;
+  options.max_move = 1.0;
+  return options;
+}
+
 json process_session(const acquisition::SessionContents& session, const fs::path& folder,
                      const SessionProcessing& options, const LiveBoundary* grown) {
   const fs::path mesh_path = folder / "mesh.ply", smooth_path = folder / "smooth.ply",
@@ -90,9 +135,12 @@ json process_session(const acquisition::SessionContents& session, const fs::path
     here.emplace(live);
   }
   StreamDigest digest;
+  StepViews views;
+  const PinholeCamera& camera = (options.replay.geometry ? *options.replay.geometry : session.manifest.geometry).camera;
   acquisition::ReplayOptions replay = options.replay;
   replay.on_step = [&](int step, double angle, const std::vector<acquisition::LaserScanPoints>& clouds,
                        Eigen::Index so_far) {
+    views.add(camera, angle, clouds);
     if (here) {
       const LiveStep live = here->add_step(step, angle, clouds);
       if (options.on_live_step) options.on_live_step(live);
@@ -111,7 +159,10 @@ json process_session(const acquisition::SessionContents& session, const fs::path
     why_not_live = std::to_string(result.outliers_removed) + " outliers were removed after the steps were fed";
   else if (!here && digest.value() != grown->digest())
     why_not_live = "the points fed live differ from the recorded session's";
-  const FinalBoundary boundary = final_boundary(live, why_not_live.empty(), result, why_not_live);
+  const FinalBoundary boundary =
+      final_boundary(live, why_not_live.empty(), result, why_not_live,
+                     options.lines_of_sight ? views.sight_lines(result, session.manifest.object.placement)
+                                            : std::vector<SightLine>{});
   seconds["final_boundary"] = watch.lap();
 
   json report = options.extra;
@@ -129,6 +180,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
     boundary_report["distinct_points"] = mesh.vertex_count() + static_cast<Eigen::Index>(st.interior_vertices.size());
     boundary_report["duplicates_merged"] = st.duplicates_merged;
     boundary_report["enclosed_volume"] = enclosed_volume(mesh.vertices.positions, mesh.faces);
+    if (st.sight_line_cells > 0) boundary_report["sight_line_cells"] = st.sight_line_cells;
     if (live) boundary_report["live"] = {{"steps", live->steps()}, {"wider_repairs", live->constriction().wider_repairs()}};
     fs::create_directories(folder);
     io::write_mesh(mesh_path, mesh, {std::nullopt, std::nullopt, options.overwrite});

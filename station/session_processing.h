@@ -28,11 +28,20 @@ namespace scanstation::station {
 ///               simulated scan): the report measures the points, the
 ///               boundary and the smooth surface against it
 /// extra         merged into the report
+/// The smoothing the station runs: the six-split with Step-5 moves bounded
+/// by one macro edge length (scanned boundaries have thin triangles where
+/// exact G¹ would bulge).
+SurfaceSmoothingOptions station_smoothing();
+
 struct SessionProcessing {
   acquisition::ReplayOptions replay;
   LiveBoundaryOptions live;
   std::function<void(const LiveStep&)> on_live_step;
-  SurfaceSmoothingOptions smoothing;
+  /// The final boundary from scratch with the cells between each point and
+  /// the camera that saw it carved first (when the final points are the
+  /// points fed, i.e. no outliers removed); off: the live boundary.
+  bool lines_of_sight = true;
+  SurfaceSmoothingOptions smoothing = station_smoothing();
   int density = 4;
   int preview_px = 400;
   std::optional<TriangleMesh> truth;

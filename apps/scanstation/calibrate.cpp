@@ -1,7 +1,11 @@
 // scanstation calibrate camera|turntable|laser|stereo -o CALIBRATION.json:
 // one part of the station's calibration file from real images or, with
-// --backend sim, from chessboard views rendered by the simulator.
+// --backend sim, from chessboard views captured through the simulated
+// station's devices (acquisition/calibration_capture.h: the camera grabs, the
+// stepper turns the table, the lasers switch on their lines; the simulator's
+// operator moves the board between placements).
 #include "acquisition/board_pose.h"
+#include "acquisition/calibration_capture.h"
 #include "acquisition/camera_calibration.h"
 #include "acquisition/laser_plane_calibration.h"
 #include "acquisition/station_calibration.h"
@@ -11,7 +15,7 @@
 #include "core/errors.h"
 #include "core/version.h"
 #include "image_list.h"
-#include "sim/calibration_views.h"
+#include "sim/calibration_station.h"
 #include "sim/simulated_turntable.h"
 #include "sim/stereo_rig.h"
 #include "station_options.h"
@@ -21,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 #include <optional>
 
@@ -155,30 +160,64 @@ class CalibrateCommand final : public Command {
     return scene;
   }
 
-  // Renders the placements (sim) with a progress bar; laser-off frames and, with lasers, one laser-on frame per laser.
-  std::vector<sim::BoardFrames> render(CommandContext& context, const std::vector<sim::BoardPlacement>& placements,
-                                       const PinholeCamera& camera, bool lasers, std::uint64_t seed) const {
-    const sim::Scene scene = sim_scene();
-    const ProgressCallback progress = context.progress.stage("render");
-    std::vector<sim::BoardFrames> frames;
-    for (const sim::BoardPlacement& placement : placements) {
-      frames.push_back(sim::render_board(scene, placement, camera, lasers, seed + 10 * frames.size()));
-      if (progress) progress(static_cast<double>(frames.size()) / static_cast<double>(placements.size()));
-    }
+  using Capture = std::function<std::vector<acquisition::CalibrationView>(
+      acquisition::TurntableScanDevices&, const acquisition::PlaceBoard&, const ProgressCallback&)>;
+
+  // Captures views through the devices of the simulated station
+  // (sim/calibration_station.h), frames area-averaged over 2 × 2 rays, the
+  // simulator's operator putting the board at placements[i] when asked.
+  std::vector<acquisition::CalibrationView> sim_capture(CommandContext& context,
+                                                        const std::vector<sim::BoardPlacement>& placements,
+                                                        std::uint64_t seed, const Capture& capture) const {
+    sim::CalibrationStation station(description_, rig_, seed, 2);
+    sim::OpenStation& open = station.devices();
+    for (const auto& note : open.notes) context.log->warn("{}", note);
+    acquisition::TurntableScanDevices devices{*open.camera, {}, *open.turntable, *open.clock,
+                                              description_.camera.timeout};
+    for (auto& laser : open.lasers) devices.lasers.push_back(laser.get());
+    const acquisition::PlaceBoard place = [&](int index, int) {
+      station.place(placements[static_cast<std::size_t>(index)]);
+    };
+    std::vector<acquisition::CalibrationView> views = capture(devices, place, context.progress.stage("capture"));
     context.progress.finish();
-    return frames;
+    open.make_safe();
+    return views;
   }
 
+  // Board views, the table still: `lasers` adds one frame per laser lit alone.
+  std::vector<acquisition::CalibrationView> sim_board_views(CommandContext& context,
+                                                            const std::vector<sim::BoardPlacement>& placements,
+                                                            bool lasers, std::uint64_t seed) const {
+    return sim_capture(context, placements, seed,
+                       [&](acquisition::TurntableScanDevices& devices, const acquisition::PlaceBoard& place,
+                           const ProgressCallback& progress) {
+                         return acquisition::capture_board_views(devices, static_cast<int>(placements.size()), place,
+                                                                 lasers, progress);
+                       });
+  }
+
+  // The stereo pair's boards, rendered directly: the station's devices are one camera.
   std::vector<cv::Mat> sim_board_images(CommandContext& context, const PinholeCamera& camera, std::uint64_t seed) const {
+    const sim::Scene scene = sim_scene();
+    const std::vector<sim::BoardPlacement> placements = sim::camera_placements(board_.width, board_.height, square_);
+    const ProgressCallback progress = context.progress.stage("render");
     std::vector<cv::Mat> images;
-    for (sim::BoardFrames& f : render(context, sim::camera_placements(board_.width, board_.height, square_), camera, false, seed))
-      images.push_back(f.laser_off);
+    for (const sim::BoardPlacement& placement : placements) {
+      images.push_back(sim::render_board(scene, placement, camera, false, seed + 10 * images.size()).laser_off);
+      if (progress) progress(static_cast<double>(images.size()) / static_cast<double>(placements.size()));
+    }
+    context.progress.finish();
     return images;
   }
 
   void calibrate_camera(CommandContext& context, StationCalibration& calibration, json& result) {
     refuse_replacing(calibration.camera.has_value(), "a camera calibration (" + (calibration.camera ? calibration.camera->date : "") + ")");
-    const std::vector<cv::Mat> images = sim_ ? sim_board_images(context, rig_.camera, 1) : read_images(images_, "camera");
+    std::vector<cv::Mat> images;
+    if (sim_)
+      for (auto& view : sim_board_views(context, sim::camera_placements(board_.width, board_.height, square_), false, 1))
+        images.push_back(view.off);
+    else
+      images = read_images(images_, "camera");
     StageTimer timer(context.report, "calibrate");
     std::vector<std::vector<cv::Point2f>> corners;
     for (const cv::Mat& image : images)
@@ -210,9 +249,19 @@ class CalibrateCommand final : public Command {
     std::vector<double> angles;
     double lowest = lowest_corner_height_.value_or(0.0);
     if (sim_) {
+      // The operator stands the board on the platter once; the table turns
+      // to each angle through the turntable device.
       const auto placements = sim::turntable_placements(board_.width, board_.height, square_, sim_views_);
-      for (sim::BoardFrames& f : render(context, placements, rig_.camera, false, 1000)) images.push_back(f.laser_off);
-      for (const sim::BoardPlacement& p : placements) angles.push_back(p.angle);
+      std::vector<double> angles_deg;
+      for (const sim::BoardPlacement& p : placements) angles_deg.push_back(p.angle / degree);
+      const Capture capture = [&](acquisition::TurntableScanDevices& devices, const acquisition::PlaceBoard& place,
+                                  const ProgressCallback& progress) {
+        return acquisition::capture_turntable_views(devices, angles_deg, place, progress);
+      };
+      for (auto& view : sim_capture(context, {{placements.front().board, 0.0}}, 1000, capture)) {
+        images.push_back(view.off);
+        angles.push_back(view.angle_deg * degree);
+      }
       if (!lowest_corner_height_) lowest = sim::lowest_corner_height(placements.front().board);
     } else {
       images = read_images(images_, "turntable");
@@ -266,12 +315,11 @@ class CalibrateCommand final : public Command {
     std::vector<std::vector<acquisition::LaserBoardView>> views;  // per laser
     std::vector<int> indices;
     if (sim_) {
-      for (const sim::BoardFrames& f : render(context, sim::laser_placements(board_.width, board_.height, square_),
-                                              rig_.camera, true, 2000)) {
-        const auto corners = acquisition::find_chessboard(f.laser_off, board_);
-        views.resize(f.laser_on.size());
-        for (std::size_t l = 0; l < f.laser_on.size(); ++l)
-          views[l].push_back({f.laser_off, f.laser_on[l], corners.value_or(std::vector<cv::Point2f>{})});
+      for (const auto& f : sim_board_views(context, sim::laser_placements(board_.width, board_.height, square_), true, 2000)) {
+        const auto corners = acquisition::find_chessboard(f.off, board_);
+        views.resize(f.on.size());
+        for (std::size_t l = 0; l < f.on.size(); ++l)
+          views[l].push_back({f.off, f.on[l], corners.value_or(std::vector<cv::Point2f>{})});
       }
       for (std::size_t l = 0; l < views.size(); ++l) indices.push_back(static_cast<int>(l));
       if (laser_) {

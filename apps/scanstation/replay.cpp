@@ -1,6 +1,8 @@
 // scanstation replay: a recorded session processed again, with its own or new
-// parameters, through the whole station flow (points, live boundary, smooth
-// surface); the damage found is reported and what is intact is replayed.
+// parameters and its recorded geometry or another calibration file, through
+// the whole station flow (points, live boundary, smooth surface); the damage
+// found is reported and what is intact is replayed.
+#include "acquisition/scan_calibration.h"
 #include "command.h"
 #include "scan_job.h"
 #include "scan_parameter_options.h"
@@ -22,6 +24,13 @@ class ReplayCommand final : public Command {
     cli_->add_option("--density", density_, "smooth.ply: segments per patch edge")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
+    cli_->add_option("--calibration", calibration_,
+                     "Triangulate with this station calibration file (e.g. a recalibration after the scan) instead "
+                     "of the geometry the session recorded; refused when made for other devices, incomplete or stale");
+    cli_->add_option("--calibration-max-age", calibration_max_age_,
+                     "With --calibration: refuse a calibration whose oldest part is older than this (days; 0: any age)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     parameters_.add_to(*cli_);
   }
 
@@ -32,6 +41,8 @@ class ReplayCommand final : public Command {
     const acquisition::SessionContents contents = acquisition::read_session(session_);
     station::SessionProcessing processing = session_processing(context, contents.manifest, density_);
     if (parameters_.any()) processing.replay.parameters = parameters_.apply(contents.manifest.parameters);
+    if (!calibration_.empty())
+      processing.replay.geometry = acquisition::replay_geometry(calibration_, contents, calibration_max_age_);
     processing.replay.progress = context.progress.stage("replay");
     processing.live.snapshot_every = snapshot_every_;
     processing.live.snapshot_folder = out / "snapshots";
@@ -42,7 +53,7 @@ class ReplayCommand final : public Command {
     for (const auto& problem : report["problems"]) context.log->warn("{}", problem.get<std::string>());
     for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
       context.log->warn("{}", warning);
-    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "replay_speedup",
+    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "replay_speedup", "geometry",
                             "laser_agreement", "boundary", "smoothing", "accuracy", "outputs"})
       if (report.contains(key)) context.report[key] = report[key];
     const auto& seconds = report["seconds"];
@@ -50,6 +61,9 @@ class ReplayCommand final : public Command {
                 report["steps"]["used"].get<int>(), contents.steps.size(), contents.manifest.steps,
                 report["points"].get<long long>(), seconds["processing"].get<double>(),
                 seconds["capture"].get<double>());
+    const std::string source = report["geometry_source"].get<std::string>();
+    std::printf("geometry: %s\n", report["geometry"]["recorded"].get<bool>() ? ("as recorded: " + source).c_str()
+                                                                             : source.c_str());
     print_results(report);
     if (!report["problems"].empty())
       std::printf("%zu problem(s) found; what is intact was replayed (see the warnings and report.json)\n",
@@ -61,6 +75,8 @@ class ReplayCommand final : public Command {
   std::filesystem::path folder_;
   int snapshot_every_ = 0;
   int density_ = 4;
+  std::filesystem::path calibration_;
+  double calibration_max_age_ = acquisition::kCalibrationMaxAgeDays;
   ScanParameterOptions parameters_;
 };
 

@@ -38,8 +38,9 @@ SessionRecorder create_session(CommandContext& context, const ScanJob& job, cons
   manifest.steps = job.steps;
   manifest.station = acquisition::station_json(job.station);
   manifest.station["sim_seed"] = job.seed;
-  manifest.geometry = acquisition::scan_geometry(job.calibration, job.station, sim::truth_geometry(simulated.rig),
-                                                 job.calibration_max_age);
+  manifest.geometry = acquisition::scan_geometry(
+      job.calibration, job.station, acquisition::simulator_truth(simulated.rig.camera, sim::light_planes(simulated.rig)),
+      job.calibration_max_age);
   manifest.parameters = job.parameters;
   manifest.object = {job.object, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
   manifest.software_version = kVersion;

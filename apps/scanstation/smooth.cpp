@@ -55,6 +55,11 @@ class SmoothCommand final : public Command {
                      "neighbour across their longest edge, where no neighbouring pair prevents it")
         ->check(CLI::Range(0.0, 60.0))
         ->capture_default_str();
+    cli_->add_option("--max-move", max_move_,
+                     "six-split Step 5: join an edge approximately (not G¹ there, counted as dependent) where meeting "
+                     "G¹ exactly would move a control point farther than this many macro edge lengths (a bulge); "
+                     "default: always exact, as the thesis")
+        ->check(CLI::PositiveNumber);
     cli_->add_option("--density", density_, "Tessellation: segments per patch edge")->capture_default_str();
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
     cli_->add_option("--zebra", zebra_, "Also write a reflection-line (zebra) PNG: smooth surface left, mesh right");
@@ -163,6 +168,7 @@ class SmoothCommand final : public Command {
     options.tension = tension_;
     options.least_squares_ratio = ratio_ == "least-squares";
     options.min_angle = min_angle_;
+    if (max_move_) options.max_move = *max_move_;
     if (normals_ == "given") {
       if (!mesh.vertices.has_normals()) throw InvalidInput("--normals given: " + input_.string() + " has no normals");
       options.given_normals = mesh.vertices.normals;
@@ -181,6 +187,7 @@ class SmoothCommand final : public Command {
   std::string ratio_ = "least-squares";
   double tension_ = 1.0 / 3.0;
   double min_angle_ = 20.0;
+  std::optional<double> max_move_;
   int density_ = 4;
   std::optional<std::filesystem::path> patches_, zebra_;
 };

@@ -1,6 +1,7 @@
 #include "sim/devices/scene_frame_source.h"
 
 #include "core/errors.h"
+#include "sim/supersampling.h"
 
 #include <bit>
 #include <numbers>
@@ -98,21 +99,40 @@ VirtualActuators virtual_actuators(const OpenStation& station, const drivers::St
   return actuators;
 }
 
+SceneStage::SceneStage(std::shared_ptr<const SceneRenderer> renderer) : current_{std::move(renderer), 0} {
+  if (!current_.renderer) throw InvalidInput("scene stage: a renderer is required");
+  previous_ = current_;
+}
+
+void SceneStage::change(std::shared_ptr<const SceneRenderer> renderer, Timestamp since) {
+  if (!renderer) throw InvalidInput("scene stage: a renderer is required");
+  previous_ = current_;
+  current_ = {std::move(renderer), previous_.generation + 1};
+  since_ = since;
+}
+
 SceneFrameSource::SceneFrameSource(std::shared_ptr<const SceneRenderer> renderer, PinholeCamera camera,
                                    VirtualActuators actuators, SensorModel sensor, std::uint64_t seed)
-    : renderer_(std::move(renderer)), camera_(std::move(camera)), actuators_(std::move(actuators)), sensor_(sensor),
-      seed_(seed) {
-  if (!renderer_ || !actuators_.angle || !actuators_.lasers)
+    : SceneFrameSource(std::make_shared<const SceneStage>(std::move(renderer)), std::move(camera),
+                       std::move(actuators), sensor, seed, 1) {}
+
+SceneFrameSource::SceneFrameSource(std::shared_ptr<const SceneStage> stage, PinholeCamera camera,
+                                   VirtualActuators actuators, SensorModel sensor, std::uint64_t seed,
+                                   int supersampling)
+    : stage_(std::move(stage)), camera_(std::move(camera)), actuators_(std::move(actuators)), sensor_(sensor),
+      seed_(seed), supersampling_(std::max(1, supersampling)) {
+  if (!stage_ || !actuators_.angle || !actuators_.lasers)
     throw InvalidInput("scene frame source: renderer and actuators are required");
 }
 
-const RenderedView& SceneFrameSource::view(double angle) {
+const RenderedView& SceneFrameSource::view(const SceneStage::Setting& setting, double angle) {
   for (auto& entry : cache_)
-    if (entry && entry->first == angle) return entry->second;
+    if (entry && entry->generation == setting.generation && entry->angle == angle) return entry->view;
   auto& slot = cache_[next_slot_];
   next_slot_ = (next_slot_ + 1) % cache_.size();
-  slot.emplace(angle, renderer_->cast(camera_, angle));
-  return slot->second;
+  slot.emplace(CastView{setting.generation, angle,
+                        setting.renderer->cast(supersampled(camera_, supersampling_), angle)});
+  return slot->view;
 }
 
 cv::Mat SceneFrameSource::render(const Exposure& exposure) {
@@ -120,16 +140,19 @@ cv::Mat SceneFrameSource::render(const Exposure& exposure) {
     throw InvalidInput("simulated scene: the camera model is " + std::to_string(camera_.width) + "x" +
                        std::to_string(camera_.height) + " but the camera streams " +
                        std::to_string(exposure.size.width) + "x" + std::to_string(exposure.size.height));
+  const SceneStage::Setting& setting = stage_->at(exposure.start);
   double angle = actuators_.angle(exposure.start);
   // A frame exposed while the table turns is smeared over the move; it is
   // rendered at the pose last cast (a stale pose, as the gate expects),
   // sparing a ray cast for each frame the gate discards.
   const auto& last = cache_[(next_slot_ + cache_.size() - 1) % cache_.size()];
-  if (last && actuators_.angle(exposure.end) != angle) angle = last->first;
+  if (last && actuators_.angle(exposure.end) != angle) angle = last->angle;
   const std::vector<int> lit = actuators_.lasers(exposure.start, exposure.end);
   std::uint64_t seed = mix(seed_, std::bit_cast<std::uint64_t>(angle));
+  if (setting.generation > 0) seed = mix(seed, setting.generation);
   for (const int laser : lit) seed = mix(seed, static_cast<std::uint64_t>(laser) + 1);
-  const cv::Mat grey = renderer_->expose(view(angle), lit, seed, sensor_);
+  const cv::Mat grey =
+      expose_supersampled(*setting.renderer, view(setting, angle), camera_, supersampling_, lit, seed, sensor_);
   cv::Mat irradiance;
   grey.convertTo(irradiance, CV_32F, 1.0 / 255.0);
   return irradiance;
@@ -138,8 +161,16 @@ cv::Mat SceneFrameSource::render(const Exposure& exposure) {
 FrameSourceFactory scene_frame_source_factory(std::shared_ptr<const SceneRenderer> renderer, PinholeCamera camera,
                                               drivers::StationDescription description, SensorModel sensor,
                                               std::uint64_t seed) {
+  return scene_frame_source_factory(std::make_shared<const SceneStage>(std::move(renderer)), std::move(camera),
+                                    std::move(description), sensor, seed, 1);
+}
+
+FrameSourceFactory scene_frame_source_factory(std::shared_ptr<const SceneStage> stage, PinholeCamera camera,
+                                              drivers::StationDescription description, SensorModel sensor,
+                                              std::uint64_t seed, int supersampling) {
   return [=](const OpenStation& station) -> std::unique_ptr<FrameSource> {
-    return std::make_unique<SceneFrameSource>(renderer, camera, virtual_actuators(station, description), sensor, seed);
+    return std::make_unique<SceneFrameSource>(stage, camera, virtual_actuators(station, description), sensor, seed,
+                                              supersampling);
   };
 }
 

@@ -50,7 +50,7 @@ struct SimStation {
     SessionManifest m;
     m.steps = steps;
     m.station = station_json(description);
-    m.geometry = sim::truth_geometry(simulated.rig);
+    m.geometry = simulator_truth(simulated.rig.camera, sim::light_planes(simulated.rig));
     m.object = {simulated.object.name, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
     m.software_version = "test";
     return m;

@@ -92,8 +92,9 @@ TEST_F(ScannedSphere, WritesTheSessionAndItsResults) {
   const json command_report = json::parse(slurp(*dir_ / "scan.json"));
   EXPECT_EQ(command_report["points"], report["points"]);
   // The flow's guarantees: a closed genus-0 boundary through every distinct
-  // point (grown live), a G¹ surface over it.
-  EXPECT_EQ(report["boundary"]["built"], "incremental");
+  // point (grown live, then built with the lines of sight), a G¹ surface over it.
+  EXPECT_EQ(report["boundary"]["built"], "from scratch, lines of sight carved first");
+  EXPECT_EQ(report["boundary"]["live"]["steps"], kSteps);
   EXPECT_EQ(report["boundary"]["topology"]["closed"], true);
   EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
   EXPECT_EQ(report["boundary"]["all_on_boundary"], true);

@@ -90,6 +90,29 @@ TEST(SixSplit, IsInvariantUnderScalingAndOffsetAndTessellatesWatertight) {
   EXPECT_EQ(topology.genus.value_or(-1), 0);
 }
 
+// A boundary the station built from a simulated turntable scan of the
+// ellipsoid (90 steps, every sixth row; scanstation demo): thin triangles
+// near the axis, one cap with a 175° angle. Meeting Step 5 exactly there
+// folded the surface (normals turned by π along a macro edge) and bulged it
+// 3.5 edge lengths out; folds are now joined by a bounded damped step, and
+// max_move bounds the bulges.
+TEST(SixSplit, NeitherFoldsNorBulgesOnAScannedBoundary) {
+  const TriangleMesh mesh =
+      io::read_mesh(std::filesystem::path(SCANSTATION_SOURCE_DIR) / "tests/smoothing/data/scanned_ellipsoid.ply");
+  const auto& V = mesh.vertices.positions;
+  Eigen::MatrixX3d N = vertex_normals(V, mesh.faces);
+  enforce_sign_condition(V, mesh.faces, N);
+  const MeshEdges edges = mesh_edges(mesh.faces);
+  const BezierSurface exact = six_split(V, mesh.faces, N, edges);
+  EXPECT_LT(verify_g1(exact).max_normal_angle, M_PI / 2);
+  EXPECT_LT(exact.dependent_edges, 10u);  // only the folds are not G¹
+  const BezierSurface bounded = six_split(V, mesh.faces, N, edges, 1.0 / 3.0, 1.0);
+  EXPECT_LT(verify_g1(bounded).max_normal_angle, M_PI / 2);
+  EXPECT_LE(oscillation(bounded, V, mesh.faces).max_relative, 1.0);
+  EXPECT_LT(bounded.dependent_edges, mesh.face_count() / 50);  // of 1.5 × faces macro edges
+  EXPECT_EQ(test::expect_interpolates(bounded, V, mesh.faces, N), 6u * mesh.face_count());
+}
+
 TEST(SixSplit, TensionKeepsG1) {
   const TriangleMesh mesh = test::real_mesh("eight.off");
   Eigen::MatrixX3d N = vertex_normals(mesh.vertices.positions, mesh.faces);

@@ -1,0 +1,107 @@
+#include "reconstruct/line_of_sight.h"
+
+#include "core/predicates.h"
+
+#include <algorithm>
+
+namespace scanstation {
+
+namespace {
+
+class SightWalk {
+ public:
+  SightWalk(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points)
+      : dt_(dt), points_(points), cell_of_(static_cast<std::size_t>(points.rows()), -1) {
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) cell_of_[static_cast<std::size_t>(dt.cells(c, i))] = static_cast<int>(c);
+  }
+
+  void walk(const SightLine& line, std::vector<int>& depth) {
+    if (line.point < 0 || line.point >= points_.rows() || !line.viewpoint.allFinite()) return;
+    const Eigen::Vector3d p = points_.row(line.point).transpose(), &q = line.viewpoint;
+    int cell = entry_cell(line.point, q);
+    path_.clear();
+    // A straight segment crosses each cell once; the bound only guards
+    // against a cycle of grazing choices.
+    for (Eigen::Index steps = 0; cell >= 0 && steps < dt_.cells.rows(); ++steps) {
+      path_.push_back(cell);
+      int exit = -1, beyond = -1;
+      for (int k = 0; k < 4; ++k) {
+        if (side(cell, k, q) >= 0) continue;  // q is not past face k (nor past a face through p: the entry cone)
+        if (beyond < 0) beyond = k;
+        if (crosses_face(p, q, cell, k)) {
+          exit = k;
+          break;
+        }
+      }
+      if (exit < 0) exit = beyond;
+      if (exit < 0) break;  // q lies in this cell
+      cell = dt_.neighbors(cell, exit);
+    }
+    for (std::size_t k = 0; k < path_.size(); ++k) {
+      int& d = depth[static_cast<std::size_t>(path_[k])];
+      const int here = static_cast<int>(path_.size() - 1 - k);
+      if (d < 0 || here < d) d = here;
+    }
+  }
+
+ private:
+  Eigen::Vector3d corner(int cell, int k) const { return points_.row(dt_.cells(cell, k)).transpose(); }
+
+  // Orientation of the cell with its vertex k replaced by x: > 0 when x is on
+  // the same side of the face opposite k as that vertex (cells are
+  // positively oriented).
+  int side(int cell, int k, const Eigen::Vector3d& x) const {
+    Eigen::Vector3d v[4] = {corner(cell, 0), corner(cell, 1), corner(cell, 2), corner(cell, 3)};
+    v[k] = x;
+    return orientation(v[0], v[1], v[2], v[3]);
+  }
+
+  // Whether the line through p and q meets the face of `cell` opposite k
+  // (its interior or boundary): the three edge orientations agree.
+  bool crosses_face(const Eigen::Vector3d& p, const Eigen::Vector3d& q, int cell, int k) const {
+    Eigen::Vector3d f[3];
+    for (int j = 0, m = 0; j < 4; ++j)
+      if (j != k) f[m++] = corner(cell, j);
+    const int s0 = orientation(p, q, f[0], f[1]), s1 = orientation(p, q, f[1], f[2]), s2 = orientation(p, q, f[2], f[0]);
+    return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+  }
+
+  // The cell around the point whose cone at it holds the direction towards
+  // q: q on the inner side (or the plane) of the three faces through it.
+  int entry_cell(int point, const Eigen::Vector3d& q) {
+    const int first = cell_of_[static_cast<std::size_t>(point)];
+    if (first < 0) return -1;
+    star_.clear();
+    star_.push_back(first);
+    for (std::size_t n = 0; n < star_.size(); ++n) {
+      const int c = star_[n];
+      bool inside = true;
+      for (int j = 0; j < 4; ++j) {
+        if (dt_.cells(c, j) == point) continue;
+        if (side(c, j, q) < 0) inside = false;
+        const int next = dt_.neighbors(c, j);  // across a face through the point
+        if (next >= 0 && std::find(star_.begin(), star_.end(), next) == star_.end()) star_.push_back(next);
+      }
+      if (inside) return c;
+    }
+    return -1;  // q is behind the hull at this point: nothing to carve
+  }
+
+  const DelaunayComplex<3>& dt_;
+  const Eigen::MatrixX3d& points_;
+  std::vector<int> cell_of_;
+  std::vector<int> star_, path_;
+};
+
+}  // namespace
+
+std::vector<int> line_of_sight_depths(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points,
+                                      const std::vector<SightLine>& lines) {
+  std::vector<int> depth(static_cast<std::size_t>(dt.cells.rows()), -1);
+  SightWalk walk(dt, points);
+  for (const SightLine& line : lines) walk.walk(line, depth);
+  return depth;
+}
+
+}  // namespace scanstation

@@ -1,0 +1,37 @@
+#include "sim/calibration_station.h"
+
+#include "sim/simulated_turntable.h"
+
+namespace scanstation::sim {
+
+namespace {
+
+Scene with_board(Scene scene, const ChessboardTarget& board) {
+  scene.board = board;
+  return scene;
+}
+
+}  // namespace
+
+CalibrationStation::CalibrationStation(const drivers::StationDescription& station, const TurntableLaserRig& rig,
+                                       std::uint64_t seed, int supersampling)
+    : description_(station),
+      base_(turntable_scene({}, rig, kSimulatedPlatterRadius)),
+      stage_(std::make_shared<SceneStage>(std::make_shared<const SceneRenderer>(with_board(base_, {})))),
+      station_(description_, camera_role | laser_role | turntable_role,
+               scene_frame_source_factory(stage_, rig.camera, description_, {}, seed, supersampling)),
+      actuators_(virtual_actuators(*station_, description_)) {}
+
+void CalibrationStation::place(const BoardPlacement& placement) {
+  const drivers::Timestamp now = station_->clock->now();
+  // The platter stands at its physical angle; the board goes on it turned by
+  // the difference, so that the world sees it at placement.angle.
+  const Eigen::Matrix3d turn = turntable_rotation(placement.angle - actuators_.angle(now));
+  ChessboardTarget board = placement.board;
+  board.origin = turn * board.origin;
+  board.across = turn * board.across;
+  board.down = turn * board.down;
+  stage_->change(std::make_shared<const SceneRenderer>(with_board(base_, board)), now);
+}
+
+}  // namespace scanstation::sim
