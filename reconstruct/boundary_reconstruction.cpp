@@ -69,10 +69,42 @@ void require_finite(const Eigen::MatrixXd& P) {
   if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
 }
 
-// The distinct points and their Delaunay triangulation, found side by side:
-// CGAL's insertion skips a repeated point, so the triangulation of all rows is
-// that of the distinct points, and merging duplicates (a sort) runs on the
-// other core meanwhile. The cells are then renumbered to the distinct points.
+// The Delaunay triangulation of the distinct points (unit-scaled), with
+// `first` and `map` as unique_points gives them. 3D: merging duplicates (a
+// hash pass) runs on the other core while CGAL triangulates all rows; its
+// insertion skips a repeated point, so that is the triangulation of the
+// distinct points, whose cells are then renumbered.
+DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& scaled,
+                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map) {
+  std::thread merge([&] { unique_points(points, first, map); });
+  DelaunayComplex<3> dt;
+  std::exception_ptr failure;
+  try {
+    dt = delaunay_complex(scaled);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  merge.join();
+  const auto distinct = static_cast<Eigen::Index>(first.size());
+  if (distinct < 4)
+    throw InvalidInput("need at least 4 distinct points for a closed polyhedron, got " + std::to_string(distinct));
+  if (failure) std::rethrow_exception(failure);
+  if (distinct < points.rows()) {
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(dt.cells(c, i))]);
+    dt.points.resize(distinct, 3);
+    for (Eigen::Index k = 0; k < distinct; ++k) dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
+  }
+  return dt;
+}
+
+// 2D: CGAL's insertion meets each repeated point at its vertex, which is all
+// the duplicate merging needed (no second pass over the points).
+DelaunayComplex<2> distinct_delaunay(const Eigen::MatrixX2d&, const Eigen::MatrixX2d& scaled,
+                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map) {
+  return delaunay_complex(scaled, first, map);
+}
+
 template <int D>
 struct Triangulated {
   Eigen::Matrix<double, Eigen::Dynamic, D> original;  // distinct points, input values
@@ -85,37 +117,15 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   require_finite(points);
   s.input_points = points.rows();
   const auto start = std::chrono::steady_clock::now();
-  const Eigen::Matrix<double, Eigen::Dynamic, D> scaled = unit_scaled<D>(points);
-  std::thread merge([&] {
-    Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(points.rows(), 3);
-    padded.leftCols(D) = points;
-    s.duplicates_merged = unique_points(padded, first, map);
-  });
   Triangulated<D> out;
-  std::exception_ptr failure;
-  try {
-    out.dt = delaunay_complex(scaled);
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  merge.join();
+  out.dt = distinct_delaunay(points, unit_scaled<D>(points), first, map);
   const auto distinct = static_cast<Eigen::Index>(first.size());
-  if (distinct < D + 1)
-    throw InvalidInput("need at least " + std::to_string(D + 1) + " distinct points for a closed " +
-                       (D == 2 ? "polygon" : "polyhedron") + ", got " + std::to_string(distinct));
-  if (failure) std::rethrow_exception(failure);
-  if (distinct < points.rows())  // else the map is the identity
-    for (Eigen::Index c = 0; c < out.dt.cells.rows(); ++c)
-      for (int i = 0; i <= D; ++i) out.dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(out.dt.cells(c, i))]);
+  s.duplicates_merged = points.rows() - distinct;
   if (distinct == points.rows()) {
-    out.original = points;  // dt.points are the scaled points already
+    out.original = points;
   } else {
     out.original.resize(distinct, D);
-    out.dt.points.resize(distinct, D);
-    for (Eigen::Index k = 0; k < distinct; ++k) {
-      out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
-      out.dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
-    }
+    for (Eigen::Index k = 0; k < distinct; ++k) out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
   }
   s.delaunay_seconds = seconds_since(start);
   return out;
@@ -161,7 +171,8 @@ std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
 
 // How many rows of `wanted` (#K by D vertex indices) are faces of
 // `boundary` (#B by D), as unordered tuples.
-std::size_t faces_on(const Eigen::MatrixXi& wanted, const Eigen::MatrixXi& boundary) {
+template <typename Faces>
+std::size_t faces_on(const Eigen::MatrixXi& wanted, const Faces& boundary) {
   if (wanted.rows() == 0) return 0;
   const auto sorted = [](Eigen::VectorXi row) {
     std::sort(row.data(), row.data() + row.size());
@@ -253,7 +264,6 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   Triangulated<2> triangulated = triangulate_distinct<2>(points, s, map, out.source);
   out.points = std::move(triangulated.original);
   const DelaunayComplex<2>& dt = triangulated.dt;
-  const Eigen::MatrixX2d& scaled = dt.points;
   const ReconstructionOptions options = renumbered(given, map);
 
   auto start = std::chrono::steady_clock::now();
@@ -262,8 +272,8 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   s.constriction_seconds = seconds_since(start);
   if (!c.all_on_boundary && options.augment) {
     start = std::chrono::steady_clock::now();
-    const Augmentation a = augment_constriction(scaled, adjacency(dt), c.boundary, c.interior_vertices,
-                                                options.augmentation);
+    const Augmentation a = augment_constriction(Eigen::MatrixX2d(dt.points), adjacency(dt), c.boundary,
+                                                c.interior_vertices, options.augmentation);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
     s.carved = a.carved;
@@ -295,10 +305,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
   out.delaunay = dt.cells;
   fill_statistics(s, dt, c);
-  Eigen::MatrixXi edges(static_cast<Eigen::Index>(out.order.size()), 2);
-  for (std::size_t k = 0; k < out.order.size(); ++k)
-    edges.row(static_cast<Eigen::Index>(k)) << out.order[k], out.order[(k + 1) % out.order.size()];
-  s.kept_faces_on_boundary = faces_on(options.constriction.keep, edges);
+  s.kept_faces_on_boundary = faces_on(options.constriction.keep, c.boundary);
   return out;
 }
 

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 
 namespace scanstation {
@@ -249,9 +250,12 @@ class Constrictor {
   }
 
   bool removable(int c) const {
-    if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     int faces[D + 1];
-    const int n = boundary_faces(c, faces);
+    return removable(c, faces, boundary_faces(c, faces));
+  }
+  // The same, given c's boundary faces.
+  bool removable(int c, const int (&faces)[D + 1], int n) const {
+    if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     for (int k = 0; k < n; ++k)
       if (fixed(c, faces[k])) return false;  // deleting c would delete a kept face
     if (n == 1) return !on_boundary_[static_cast<std::size_t>(vertex(c, faces[0]))];
@@ -263,9 +267,10 @@ class Constrictor {
   // Lines 7-8: a cell whose boundary changed goes (back) into the heap when
   // removable, keyed by its γ-indicator (3D, two faces: their sum, §5.3).
   void consider(int c) {
-    if (!kept_[static_cast<std::size_t>(c)] || !removable(c)) return;
+    if (!kept_[static_cast<std::size_t>(c)]) return;
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
+    if (!removable(c, faces, n)) return;
     heap_.push({key(c, faces, n), c, stamp_[static_cast<std::size_t>(c)], carve_rank(c)});
   }
 
@@ -333,7 +338,8 @@ class Constrictor {
   Eigen::Index boundary_vertices_ = 0;  // of the points that are not exempt
   Eigen::Index target_ = 0;             // how many of them must reach the boundary
   EdgeCounter edges_;
-  QuaternaryHeap<Candidate> heap_;
+  // 2D: a tiered queue (same order); 3D keeps the plain heap.
+  std::conditional_t<D == 2, TieredQueue<Candidate>, QuaternaryHeap<Candidate>> heap_;
   // Bit i: the face opposite vertex i must stay; guide bits are filled in
   // lazily by fixed(), hence mutable.
   mutable std::vector<std::uint8_t> fixed_;

@@ -14,6 +14,7 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,51 +39,116 @@ void require_points(Eigen::Index n, int needed, const char* shape) {
                        ", got " + std::to_string(n));
 }
 
-// Inserts (point, index) pairs in spatial (Hilbert) order, each located from
-// the previous vertex, recording the index on the vertex. Sorting the pairs
-// themselves rather than indices into them keeps the sort cache-friendly:
-// this is as fast as CGAL's plain range insertion, where the with-info range
-// insertion is about 30% slower.
+// Inserts (point, index) pairs in spatial order (CGAL's randomized Hilbert
+// order, BRIO: a plain Hilbert order is about 10× slower on points along a
+// curve), each located from the previous vertex, recording the index on the
+// vertex. Sorting the pairs themselves rather than indices into them keeps
+// the sort cache-friendly: this is as fast as CGAL's plain range insertion,
+// where the with-info range insertion is about 30% slower. A repeated point
+// leaves the triangulation as it was; CGAL returns the vertex already there,
+// which keeps its index, and repeat(index, vertex) hears of it.
 Delaunay2::Face_handle near(Delaunay2::Vertex_handle v) { return v == Delaunay2::Vertex_handle() ? Delaunay2::Face_handle() : v->face(); }
 Delaunay3::Cell_handle near(Delaunay3::Vertex_handle v) { return v == Delaunay3::Vertex_handle() ? Delaunay3::Cell_handle() : v->cell(); }
 
 template <typename Point>
 using FirstOfPair = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
 
-template <typename Traits, typename Triangulation, typename Point>
-void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int>>& input) {
+template <typename Traits, typename Triangulation, typename Point, typename Repeat>
+void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int>>& input, Repeat&& repeat) {
   CGAL::spatial_sort(input.begin(), input.end(), Traits(FirstOfPair<Point>()));
   typename Triangulation::Vertex_handle hint;
   for (const auto& [point, index] : input) {
     const auto before = dt.number_of_vertices();
     hint = dt.insert(point, near(hint));
-    if (dt.number_of_vertices() > before) hint->info() = index;  // a repeated point keeps its first index
+    if (dt.number_of_vertices() > before) {
+      hint->info() = index;
+    } else {
+      repeat(index, hint);
+    }
   }
+}
+
+using Repeats2 = std::vector<std::pair<int, Delaunay2::Vertex_handle>>;
+
+// Numbers the distinct points as unique_points does (first occurrences in
+// input order) from what the insertion saw: each vertex holds the row that
+// created it, `repeats` the other rows and their vertices. Vertex infos
+// become indices into `first`.
+void number_distinct(Delaunay2& dt, Repeats2& repeats, Eigen::Index rows, std::vector<Eigen::Index>& first,
+                     std::vector<Eigen::Index>& map) {
+  first.resize(static_cast<std::size_t>(rows));
+  if (repeats.empty()) {  // the usual case: every row is a vertex and keeps its number
+    std::iota(first.begin(), first.end(), Eigen::Index{0});
+    map = first;
+    return;
+  }
+  // The spatial order may meet a later copy first: the smallest row of each
+  // vertex's copies stands for it (a running minimum, the rows swapped out
+  // stay in `repeats`).
+  for (auto& [row, v] : repeats)
+    if (row < v->info()) std::swap(row, v->info());
+  std::vector<char> distinct(static_cast<std::size_t>(rows), 0);
+  for (const auto v : dt.finite_vertex_handles()) distinct[static_cast<std::size_t>(v->info())] = 1;
+  first.clear();
+  map.assign(static_cast<std::size_t>(rows), -1);
+  for (Eigen::Index i = 0; i < rows; ++i)
+    if (distinct[static_cast<std::size_t>(i)]) {
+      map[static_cast<std::size_t>(i)] = static_cast<Eigen::Index>(first.size());
+      first.push_back(i);
+    }
+  for (const auto& [row, v] : repeats) map[static_cast<std::size_t>(row)] = map[static_cast<std::size_t>(v->info())];
+  for (const auto v : dt.finite_vertex_handles()) v->info() = static_cast<int>(map[static_cast<std::size_t>(v->info())]);
 }
 
 }  // namespace
 
-DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
-  require_points(P.rows(), 3, "polygon");
-  std::vector<std::pair<Kernel::Point_2, int>> input;
-  input.reserve(static_cast<std::size_t>(P.rows()));
-  for (Eigen::Index i = 0; i < P.rows(); ++i) input.emplace_back(Kernel::Point_2(P(i, 0), P(i, 1)), static_cast<int>(i));
+DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
+                                    std::vector<Eigen::Index>& map) {
+  Repeats2 repeats;
   Delaunay2 dt;
-  insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_2<Kernel, FirstOfPair<Kernel::Point_2>>>(dt, input);
+  {
+    std::vector<std::pair<Kernel::Point_2, int>> input;
+    input.reserve(static_cast<std::size_t>(P.rows()));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) input.emplace_back(Kernel::Point_2(P(i, 0), P(i, 1)), static_cast<int>(i));
+    insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_2<Kernel, FirstOfPair<Kernel::Point_2>>>(
+        dt, input, [&](int row, Delaunay2::Vertex_handle v) { repeats.emplace_back(row, v); });
+  }
+  number_distinct(dt, repeats, P.rows(), first, map);
+  require_points(static_cast<Eigen::Index>(first.size()), 3, "polygon");
   if (dt.dimension() < 2) throw InvalidInput("all points lie on one line: no polygon encloses them");
 
   DelaunayComplex<2> out;
-  out.points = P;
-  out.cells.resize(static_cast<Eigen::Index>(dt.number_of_faces()), 3);
-  out.neighbors.resize(out.cells.rows(), 3);
+  if (repeats.empty()) {
+    out.points = P;
+  } else {
+    out.points.resize(static_cast<Eigen::Index>(first.size()), 2);
+    for (std::size_t k = 0; k < first.size(); ++k) out.points.row(static_cast<Eigen::Index>(k)) = P.row(first[k]);
+  }
+  // Cells numbered in CGAL's storage order, infinite faces −1: one pass for
+  // the numbers, one to copy (a neighbour may come later in that order).
   int id = 0;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) f->info() = id++;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = dt.is_infinite(f) ? -1 : id++;
+  out.cells.resize(id, 3);
+  out.neighbors.resize(id, 3);
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
+    const int c = f->info();
+    if (c < 0) continue;
     for (int i = 0; i < 3; ++i) {
-      out.cells(f->info(), i) = f->vertex(i)->info();
-      const auto n = f->neighbor(i);
-      out.neighbors(f->info(), i) = dt.is_infinite(n) ? -1 : n->info();
+      out.cells(c, i) = f->vertex(i)->info();
+      out.neighbors(c, i) = f->neighbor(i)->info();
     }
+  }
+  return out;
+}
+
+DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
+  std::vector<Eigen::Index> first, map;
+  DelaunayComplex<2> out = delaunay_complex(P, first, map);
+  if (static_cast<Eigen::Index>(first.size()) < P.rows()) {  // back to rows of P
+    for (Eigen::Index c = 0; c < out.cells.rows(); ++c)
+      for (int i = 0; i < 3; ++i) out.cells(c, i) = static_cast<int>(first[static_cast<std::size_t>(out.cells(c, i))]);
+    out.points = P;
+  }
   return out;
 }
 
@@ -93,7 +159,8 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
   for (Eigen::Index i = 0; i < P.rows(); ++i)
     input.emplace_back(Kernel::Point_3(P(i, 0), P(i, 1), P(i, 2)), static_cast<int>(i));
   Delaunay3 dt;
-  insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(dt, input);
+  insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(
+      dt, input, [](int, Delaunay3::Vertex_handle) {});
   if (dt.dimension() < 3) throw InvalidInput("all points lie in one plane: no polyhedron encloses them");
 
   DelaunayComplex<3> out;

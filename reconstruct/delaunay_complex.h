@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace scanstation {
 
 /// D = 2 (triangles) or 3 (tetrahedra).
@@ -13,20 +15,38 @@ namespace scanstation {
 ///            oriented (counter-clockwise in 2D; orientation(v0,v1,v2,v3) > 0 in 3D)
 /// neighbors  #C by D+1: neighbors(c, i) is the cell across the face of c
 ///            opposite its vertex i, or −1 across the convex hull
+/// In 2D everything is stored row by row: constriction reads a cell's three
+/// entries, and a point's two coordinates, together and in no spatial order
+/// (one cache line, not two or three).
 template <int D>
 struct DelaunayComplex {
-  Eigen::Matrix<double, Eigen::Dynamic, D> points;
-  Eigen::Matrix<int, Eigen::Dynamic, D + 1> cells;
-  Eigen::Matrix<int, Eigen::Dynamic, D + 1> neighbors;
+  static constexpr int kOrder = D == 2 ? Eigen::RowMajor : Eigen::ColMajor;
+  using Points = Eigen::Matrix<double, Eigen::Dynamic, D, kOrder>;
+  using Cells = Eigen::Matrix<int, Eigen::Dynamic, D + 1, kOrder>;
+  Points points;
+  Cells cells;
+  Cells neighbors;
 };
 
 /// Builds the Delaunay triangulation with CGAL (exact predicates; points
 /// inserted in spatial order). A repeated row is inserted once: the cells then
-/// index whichever copy came first in that order, and the other copies appear
-/// in no cell (merge duplicates first, or renumber the cells). Throws
-/// InvalidInput when fewer than D+1 rows are given or all points lie on a
-/// line (2D) or a plane (3D): then no closed boundary encloses them.
+/// index one of its copies (in 2D its first occurrence; in 3D whichever came
+/// first in that order), and the other copies appear in no cell (merge
+/// duplicates first, or renumber the cells). Throws InvalidInput when fewer
+/// than D+1 rows are given or all points lie on a line (2D) or a plane (3D):
+/// then no closed boundary encloses them.
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P);
 DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
+
+/// The Delaunay triangulation of the distinct rows of P, the duplicates found
+/// on the way: CGAL's insertion meets a repeated point at the vertex already
+/// there, so no separate pass over the points is needed.
+/// first  (output) the rows of P that are first occurrences, increasing
+/// map    (output) #P entries: map[i] is the index into `first` of the row
+///        equal to P.row(i) (−0.0 and +0.0 count as equal), as unique_points
+/// Returns the complex of the points P.row(first[k]) (cells index k). Throws
+/// InvalidInput for fewer than 3 distinct points or all points on a line.
+DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
+                                    std::vector<Eigen::Index>& map);
 
 }  // namespace scanstation

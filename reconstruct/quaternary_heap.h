@@ -4,7 +4,9 @@
 // cell, and the heap of a million-point input outgrows the caches.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -51,6 +53,53 @@ class QuaternaryHeap {
 
  private:
   std::vector<T> items_;
+};
+
+/// The same order as QuaternaryHeap (top is the largest by operator<), for
+/// queues where most items are never popped: constriction pushes every cell
+/// as soon as it is removable, and in 2D about a third of them (the cells on
+/// the inner side of the curve, keyed near +1) wait until the end. Only the
+/// items that come no later than a limit sit in the heap, the others in an
+/// unordered list; when the heap runs dry, the best part of the list (an
+/// eighth, by a selection) joins it. The heap stays small enough for the
+/// caches, and an item that is never popped costs a few list passes.
+template <typename T>
+class TieredQueue {
+ public:
+  bool empty() const { return heap_.empty() && rest_.empty(); }
+  std::size_t size() const { return heap_.size() + rest_.size(); }
+  const T& top() {
+    if (heap_.empty()) refill();
+    return heap_.top();
+  }
+  void push(const T& item) {
+    if (limit_ && !(item < *limit_)) {
+      heap_.push(item);
+    } else {
+      rest_.push_back(item);
+    }
+  }
+  void pop() {
+    if (heap_.empty()) refill();
+    heap_.pop();
+  }
+
+ private:
+  void refill() {
+    const std::size_t n = rest_.size();
+    const std::size_t k = std::min(n, std::max<std::size_t>(n / 8, 1024));
+    if (k == 0) return;
+    const auto cut = rest_.end() - static_cast<std::ptrdiff_t>(k);
+    std::nth_element(rest_.begin(), cut, rest_.end());
+    limit_ = *cut;  // the k items from cut on come no later than it; so may equal ones before
+    const auto first = std::partition(rest_.begin(), cut, [&](const T& item) { return item < *limit_; });
+    for (auto it = first; it != rest_.end(); ++it) heap_.push(*it);
+    rest_.erase(first, rest_.end());
+  }
+
+  QuaternaryHeap<T> heap_;  // every item that is not below limit_
+  std::vector<T> rest_;     // the items below limit_ (all of them before the first refill)
+  std::optional<T> limit_;
 };
 
 }  // namespace scanstation

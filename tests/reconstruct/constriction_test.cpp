@@ -6,6 +6,7 @@
 #include "core/polygon.h"
 #include "core/self_intersections.h"
 #include "core/triangle_recall.h"
+#include "core/unique_points.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/boundary_svg.h"
 #include "sim/outlines.h"
@@ -294,6 +295,42 @@ TEST(Constriction2, ChaliceAndFaceOutlinesGiveSimplePolygonsThroughAllPoints) {
   const Polygon2 chalice = sim::chalice_outline(160);
   const CurveReconstruction r = reconstruct_curve(chalice.vertices);
   EXPECT_NEAR(twice_signed_area(r.polygon), twice_signed_area(chalice), 1e-9);
+}
+
+TEST(Constriction2, DuplicatesFoundByTheTriangulationAreMergedLikeUniquePoints) {
+  // 2D merges duplicates inside CGAL's insertion (a repeated point meets its
+  // vertex); the distinct points and their numbering must be unique_points'
+  // (first occurrences in input order, −0.0 equal to +0.0), also when the
+  // spatial order meets a later copy first.
+  sim::Random random(11);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Eigen::Index n = 4 + static_cast<Eigen::Index>(random.below(200));
+    Eigen::MatrixX2d P(n, 2);
+    for (Eigen::Index i = 0; i < n; ++i) P.row(i) << random.uniform(), random.uniform();
+    for (Eigen::Index k = 0; k < n / 3; ++k) P.row(random.below(n)) = P.row(random.below(n));
+    P.row(n - 1) << -0.0, 0.25;
+    P.row(random.below(n - 1)) << 0.0, -0.0 + 0.25;
+    Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(n, 3);
+    padded.leftCols(2) = P;
+    std::vector<Eigen::Index> first, map, expected_first, expected_map;
+    const Eigen::Index duplicates = unique_points(padded, expected_first, expected_map);
+    const DelaunayComplex<2> dt = delaunay_complex(P, first, map);
+    EXPECT_EQ(first, expected_first) << trial;
+    EXPECT_EQ(map, expected_map) << trial;
+    ASSERT_EQ(dt.points.rows(), static_cast<Eigen::Index>(first.size())) << trial;
+    for (std::size_t k = 0; k < first.size(); ++k)
+      EXPECT_EQ(dt.points.row(static_cast<Eigen::Index>(k)), P.row(first[k])) << trial;
+    std::vector<char> used(first.size(), 0);  // every distinct point is a vertex of some triangle
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 3; ++i) used[static_cast<std::size_t>(dt.cells(c, i))] = 1;
+    EXPECT_EQ(std::count(used.begin(), used.end(), 1), static_cast<long>(first.size())) << trial;
+
+    const CurveReconstruction r = reconstruct_curve(P);
+    EXPECT_EQ(r.statistics.duplicates_merged, duplicates) << trial;
+    EXPECT_EQ(r.source, expected_first) << trial;
+    EXPECT_EQ(r.polygon.size(), n - duplicates) << trial;
+    EXPECT_TRUE(is_simple(r.polygon)) << trial;
+  }
 }
 
 TEST(Constriction2, RandomPointSetsAlwaysGiveSimplePolygons) {
