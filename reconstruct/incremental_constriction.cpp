@@ -1,6 +1,7 @@
 #include "reconstruct/incremental_constriction.h"
 
 #include "core/errors.h"
+#include "reconstruct/line_of_sight.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -99,6 +100,9 @@ struct IncrementalConstriction::State {
   std::vector<int> faces_at;            // f(v): boundary triangles at each point
   Eigen::Index corners = 0;             // Σ f(v): three per boundary triangle
   std::vector<char> pending;            // points constriction could not reach
+  std::vector<Eigen::Vector3d> viewpoints;  // of the batches that gave one
+  std::vector<int> viewpoint_of;        // per point: its batch's entry in viewpoints, else −1
+  int batch_viewpoint = -1;             // of the batch being inserted
   std::vector<int> local_vertex;        // scratch: a point's number in a LocalComplex, else −1
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
@@ -422,13 +426,30 @@ struct IncrementalConstriction::State {
     return L;
   }
 
+  // The constriction options for L: the cells between its points and their
+  // viewpoints, among those re-decided, are carved first. A line is followed
+  // within L only: where it leaves L it ends, as at the convex hull.
+  ConstrictionOptions with_sight_lines(const LocalComplex& L, BatchStats& stats) const {
+    std::vector<SightLine> lines;
+    for (std::size_t k = 0; k < L.vertices.size(); ++k) {
+      const int view = viewpoint_of[static_cast<std::size_t>(L.vertices[k]->info())];
+      if (view >= 0) lines.push_back({static_cast<int>(k), viewpoints[static_cast<std::size_t>(view)]});
+    }
+    if (lines.empty()) return constriction;
+    ConstrictionOptions options = constriction;
+    options.carve_first = line_of_sight_depths(L.dt, L.dt.points, lines);
+    for (std::size_t i = L.region; i < L.cells.size(); ++i) options.carve_first[i] = -1;  // frozen or outside already
+    for (std::size_t i = 0; i < L.region; ++i) stats.sight_line_cells += options.carve_first[i] >= 0;
+    return options;
+  }
+
   // Constricts the region (kept cells around it frozen when `surround`);
   // keeps the result when every point of the region that is not pending
   // reached the boundary, or when `final`. Returns whether they all did.
-  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, std::size_t& touched) {
+  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats) {
     const LocalComplex L = local_complex(region, surround);
-    touched += L.cells.size();
-    const Constriction<3> r = constrict(L.dt, L.start, constriction);
+    stats.tetrahedra_touched += L.cells.size();
+    const Constriction<3> r = constrict(L.dt, L.start, with_sight_lines(L, stats));
     std::vector<char> interior(L.vertices.size(), 0);
     for (const int v : r.interior_vertices) interior[static_cast<std::size_t>(v)] = 1;
     bool reached = true;
@@ -446,7 +467,7 @@ struct IncrementalConstriction::State {
 
   // The wider repair (and the first constriction): all of the convex hull
   // kept, constricted as a whole, exactly as reconstruct_surface does.
-  void constrict_all(std::size_t& touched) {
+  void constrict_all(BatchStats& stats) {
     std::vector<Cell> all;
     for (const Cell c : dt.finite_cell_handles()) {
       c->info().kept = 1;
@@ -454,7 +475,7 @@ struct IncrementalConstriction::State {
     }
     std::fill(pending.begin(), pending.end(), 0);
     pending_count = 0;
-    constrict_region(all, false, true, touched);
+    constrict_region(all, false, true, stats);
     std::fill(faces_at.begin(), faces_at.end(), 0);
     corners = 0;
     for (const Cell c : all)
@@ -512,6 +533,7 @@ struct IncrementalConstriction::State {
     for (const auto& [row, v] : created) {
       v->info() = static_cast<int>(points.size());
       points.push_back(batch.row(row).transpose());
+      viewpoint_of.push_back(batch_viewpoint);
       source.push_back(received + row);
       fresh.push_back(v);
     }
@@ -580,7 +602,7 @@ struct IncrementalConstriction::State {
           // A ring may take in cells of a later part: that part's own
           // constriction then starts from what this one left.
           const bool last = ring == kUnfreezeRings;
-          if (constrict_region(piece, true, last, s.tetrahedra_touched) || last) {
+          if (constrict_region(piece, true, last, s) || last) {
             s.rings = std::max(s.rings, ring);
             break;
           }
@@ -593,7 +615,7 @@ struct IncrementalConstriction::State {
     }
     s.wider_repair = true;
     ++wider;
-    constrict_all(s.tetrahedra_touched);
+    constrict_all(s);
     s.faces_changed = 2 * points.size() - 4;  // the whole boundary (F = 2V − 4) was re-decided
   }
 };
@@ -613,10 +635,16 @@ IncrementalConstriction::~IncrementalConstriction() = default;
 IncrementalConstriction::IncrementalConstriction(IncrementalConstriction&&) noexcept = default;
 IncrementalConstriction& IncrementalConstriction::operator=(IncrementalConstriction&&) noexcept = default;
 
-BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch) {
+BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch, const std::optional<Eigen::Vector3d>& viewpoint) {
   const auto start = std::chrono::steady_clock::now();
   if (!batch.allFinite()) throw InvalidInput("batch points contain NaN or infinite coordinates");
+  if (viewpoint && !viewpoint->allFinite()) throw InvalidInput("the batch's viewpoint has NaN or infinite coordinates");
   State& s = *state_;
+  s.batch_viewpoint = -1;
+  if (viewpoint) {
+    s.batch_viewpoint = static_cast<int>(s.viewpoints.size());
+    s.viewpoints.push_back(*viewpoint);
+  }
   BatchStats stats;
   stats.points_received = static_cast<std::size_t>(batch.rows());
   const std::vector<Vertex> fresh = s.insert(batch);
@@ -624,7 +652,7 @@ BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch) {
   if (s.dt.dimension() == 3) {
     if (!s.started) {
       s.started = true;
-      s.constrict_all(stats.tetrahedra_touched);
+      s.constrict_all(stats);
       stats.faces_changed = 2 * s.points.size() - 4;
     } else if (!fresh.empty()) {
       s.repair(fresh, stats);

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 
 namespace scanstation {
 
@@ -29,6 +30,7 @@ struct BatchStats {
   std::size_t pending = 0;    ///< points constriction could not reach; surface() brings them on by augmentation (§5.4)
   int rings = 0;              ///< rings of kept cells unfrozen before the local repair succeeded
   bool wider_repair = false;  ///< the batch was repaired by re-constricting the whole triangulation
+  std::size_t sight_line_cells = 0;  ///< re-decided cells crossed by a line of sight (carved first)
 };
 
 /// Keeps a closed, simple, 2-manifold, genus-0 boundary through all points
@@ -78,7 +80,12 @@ class IncrementalConstriction {
   IncrementalConstriction& operator=(IncrementalConstriction&&) noexcept;
 
   /// points #B by 3 (B may be 0). Throws InvalidInput on NaN or infinite coordinates.
-  BatchStats add_batch(const Eigen::MatrixX3d& points);
+  /// viewpoint  where the batch's points were seen from (a turntable step's
+  ///   camera centre, in the points' coordinates): every later repair around
+  ///   a point carves the cells between it and its viewpoint first
+  ///   (line_of_sight_depths, ConstrictionOptions::carve_first), as
+  ///   reconstruct_surface does with ReconstructionOptions::sight_lines.
+  BatchStats add_batch(const Eigen::MatrixX3d& points, const std::optional<Eigen::Vector3d>& viewpoint = std::nullopt);
 
   /// The current boundary in reconstruct_surface's form: mesh vertices are the
   /// distinct points in the order received, source their rows in the stream

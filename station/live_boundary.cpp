@@ -1,10 +1,12 @@
 #include "station/live_boundary.h"
 
 #include "core/io/mesh_io.h"
+#include "core/station_geometry.h"
 
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 
 namespace scanstation::station {
 
@@ -51,8 +53,12 @@ LiveStep LiveBoundary::add_step(int step, double angle_deg, const std::vector<ac
     rows += cloud.cloud.size();
   }
   digest_.add(clouds);
-  const BatchStats stats = constriction_.add_batch(batch);
+  std::optional<Eigen::Vector3d> viewpoint;  // in the platter's object frame, as the points
+  if (options_.camera_centre)
+    viewpoint = turntable_rotation(angle_deg * std::numbers::pi / 180.0).transpose() * *options_.camera_centre;
+  const BatchStats stats = constriction_.add_batch(batch, viewpoint);
   ++steps_;
+  sight_line_cells_ += stats.sight_line_cells;
   LiveStep live;
   live.step = step;
   live.angle_deg = angle_deg;

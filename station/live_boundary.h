@@ -30,11 +30,16 @@ class StreamDigest {
 };
 
 /// margin          rings re-opened around each batch (IncrementalConstriction)
+/// camera_centre   where the camera that saw the points sits, in the station
+///                 frame: each step's points are fed with it turned back by
+///                 the step's angle as their viewpoint, so the live boundary
+///                 carves their lines of sight first; none: plain constriction
 /// snapshot_every  K > 0: after every K-th step fed, the current boundary is
 ///                 written to snapshot_folder/boundary-step-NNNN.ply (NNNN the
 ///                 step's index), in the object's own coordinates (placement)
 struct LiveBoundaryOptions {
   int margin = 3;
+  std::optional<Eigen::Vector3d> camera_centre;
   int snapshot_every = 0;
   std::filesystem::path snapshot_folder;
   acquisition::ObjectPlacement placement;
@@ -69,6 +74,8 @@ class LiveBoundary {
   /// Of every point fed so far (StreamDigest).
   std::uint64_t digest() const { return digest_.value(); }
   int steps() const { return steps_; }
+  /// Re-decided cells crossed by a line of sight, over all steps (BatchStats).
+  std::size_t sight_line_cells() const { return sight_line_cells_; }
   double seconds() const { return seconds_; }
 
  private:
@@ -76,6 +83,7 @@ class LiveBoundary {
   IncrementalConstriction constriction_;
   StreamDigest digest_;
   int steps_ = 0;
+  std::size_t sight_line_cells_ = 0;
   double seconds_ = 0;
 };
 

@@ -84,19 +84,19 @@ FinalBoundary final_boundary(const LiveBoundary* live, bool live_is_valid, const
                              const std::string& why_not_live, const std::vector<SightLine>& sight_lines) {
   FinalBoundary b;
   try {
-    if (!sight_lines.empty()) {
-      // The live boundary is the view during the scan; the result carves
-      // what the camera saw to be empty first (reconstruct/line_of_sight.h).
+    if (live_is_valid) {
+      b.surface = live->constriction().surface();
+      b.built = live->steps() == 0              ? "none"
+                : live->sight_line_cells() > 0 ? "incremental, lines of sight carved first"
+                                               : "incremental";
+    } else {
+      // Lines of sight carve what the camera saw to be empty first
+      // (reconstruct/line_of_sight.h), as the live boundary does.
       ReconstructionOptions options = surface_defaults();
       options.sight_lines = sight_lines;
       b.surface = reconstruct_surface(result.points.cloud.positions, options);
-      b.built = "from scratch, lines of sight carved first";
-    } else if (live_is_valid) {
-      b.surface = live->constriction().surface();
-      b.built = live->steps() > 0 ? "incremental" : "none";
-    } else {
-      b.surface = reconstruct_surface(result.points.cloud.positions, surface_defaults());
-      b.built = "from scratch: " + why_not_live;
+      b.built = std::string("from scratch") + (sight_lines.empty() ? "" : ", lines of sight carved first") + ": " +
+                why_not_live;
     }
   } catch (const InvalidInput& e) {
     b.error = e.what();
@@ -136,15 +136,17 @@ json process_session(const acquisition::SessionContents& session, const fs::path
 
   // Replay: the points again, step by step, into a boundary grown here
   // unless the scan grew one live.
+  const PinholeCamera& camera = (options.replay.geometry ? *options.replay.geometry : session.manifest.geometry).camera;
   std::optional<LiveBoundary> here;
   if (!grown) {
     LiveBoundaryOptions live = options.live;
     live.placement = session.manifest.object.placement;
+    live.camera_centre.reset();
+    if (options.lines_of_sight) live.camera_centre = camera.centre();
     here.emplace(live);
   }
   StreamDigest digest;
   StepViews views;
-  const PinholeCamera& camera = (options.replay.geometry ? *options.replay.geometry : session.manifest.geometry).camera;
   acquisition::ReplayOptions replay = options.replay;
   replay.on_step = [&](int step, double angle, const std::vector<acquisition::LaserScanPoints>& clouds,
                        Eigen::Index so_far) {
@@ -189,7 +191,10 @@ json process_session(const acquisition::SessionContents& session, const fs::path
     boundary_report["duplicates_merged"] = st.duplicates_merged;
     boundary_report["enclosed_volume"] = enclosed_volume(mesh.vertices.positions, mesh.faces);
     if (st.sight_line_cells > 0) boundary_report["sight_line_cells"] = st.sight_line_cells;
-    if (live) boundary_report["live"] = {{"steps", live->steps()}, {"wider_repairs", live->constriction().wider_repairs()}};
+    if (live)
+      boundary_report["live"] = {{"steps", live->steps()},
+                                 {"wider_repairs", live->constriction().wider_repairs()},
+                                 {"sight_line_cells", live->sight_line_cells()}};
     fs::create_directories(folder);
     io::write_mesh(mesh_path, mesh, {std::nullopt, std::nullopt, options.overwrite});
     outputs["mesh"] = mesh_path.string();

@@ -37,9 +37,11 @@ struct SessionProcessing {
   acquisition::ReplayOptions replay;
   LiveBoundaryOptions live;
   std::function<void(const LiveStep&)> on_live_step;
-  /// The final boundary from scratch with the cells between each point and
-  /// the camera that saw it carved first (outliers removed or not: each
-  /// final point keeps its step's camera); off: the live boundary.
+  /// Carve the cells between each point and the camera that saw it first:
+  /// in the boundary grown here (LiveBoundaryOptions::camera_centre; a scan's
+  /// own live boundary is given its camera by the caller) and, when the
+  /// final boundary is built from scratch, there too (each final point keeps
+  /// its step's camera, outliers removed or not).
   bool lines_of_sight = true;
   SurfaceSmoothingOptions smoothing = station_smoothing();
   int density = 4;
@@ -60,7 +62,8 @@ struct SessionProcessing {
 /// `grown`: the boundary a scan grew while capturing. It is the final
 /// boundary when it was fed exactly the points found now (same StreamDigest)
 /// and no outlier was removed; otherwise the boundary is grown anew here, or
-/// (outliers removed) reconstructed from scratch from the final points. Fewer
+/// (outliers removed) reconstructed from scratch from the final points, with
+/// their lines of sight. Fewer
 /// than 4 points or points without volume give no boundary: the report says
 /// so and points.ply is still written. Returns the report.
 nlohmann::json process_session(const acquisition::SessionContents& session, const std::filesystem::path& folder,

@@ -198,6 +198,7 @@ station::SessionProcessing session_processing(CommandContext& context, const acq
   options.overwrite = io::Overwrite::replace;  // the command checked what it may replace
   options.density = density;
   options.truth = known_object_surface(manifest);
+  options.live.camera_centre = manifest.geometry.camera.centre();  // lines of sight, as the replay's
   const int steps = manifest.steps;
   options.on_live_step = [&context, steps](const station::LiveStep& s) {
     context.progress.detail(live_detail(s, steps));

@@ -3,8 +3,10 @@
 // good as constricting all points from scratch.
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_measures.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/incremental_constriction.h"
+#include "reconstruct/line_of_sight.h"
 #include "sim/arrival_order.h"
 #include "sim/random.h"
 #include "sim/relief_mask.h"
@@ -34,6 +36,16 @@ void expect_boundary_through_all(const IncrementalConstriction& inc, const Batch
   EXPECT_EQ(r.mesh.vertex_count(), static_cast<Eigen::Index>(s.points_so_far)) << what;
   EXPECT_TRUE(r.statistics.interior_vertices.empty()) << what;
   expect_valid_surface(r, what);
+}
+
+// A reconstruction's faces in the numbering of the mesh its points came from
+// (point i of the reconstruction was row order[i]).
+Eigen::MatrixX3i in_mesh_numbering(const SurfaceReconstruction& r, const std::vector<Eigen::Index>& order) {
+  Eigen::MatrixX3i faces = r.mesh.faces;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      faces(f, k) = static_cast<int>(order[static_cast<std::size_t>(r.source[static_cast<std::size_t>(faces(f, k))])]);
+  return faces;
 }
 
 // Feeds P in `batches` batches in the given order, checking after every batch.
@@ -185,6 +197,66 @@ TEST(IncrementalConstriction, DuplicatesAcrossBatchesAreMerged) {
 // The final boundary is as good as constricting all points at once: triangle
 // recall against the true mesh within one percentage point, whether the
 // points come in turntable order or at random.
+// A turntable scan of a candlestick: each step's profile seen by a far
+// camera turned with the table. With each batch's viewpoint, every repair
+// carves the lines of sight first: after every step the boundary is valid,
+// and the final one is about as good as from scratch with the same lines
+// (triangle recall) and encloses a volume closer to the truth than plain
+// constriction, which bridges the grooves (measured: 0.9974 and 1.0170 of
+// the true 1.0038).
+TEST(IncrementalConstriction, LinesOfSightCarveTheGroovesBatchByBatch) {
+  const int steps = 24;
+  const TriangleMesh truth = sim::surface_of_revolution(sim::candlestick_profile(60), steps);
+  const Eigen::MatrixX3d& P = truth.vertices.positions;
+  const double reach = 1000.0 * P.leftCols<2>().rowwise().norm().maxCoeff();
+  const double height = 0.5 * (P.col(2).minCoeff() + P.col(2).maxCoeff());
+  // Rows by step: the poles with the first step, then each ring's vertex of
+  // the step's angle (surface_of_revolution numbers them ring by ring).
+  std::vector<std::vector<Eigen::Index>> rows(steps);
+  std::vector<Eigen::Vector3d> views(steps);
+  for (int k = 0; k < steps; ++k) {
+    const double angle = 2.0 * M_PI * k / steps;
+    views[static_cast<std::size_t>(k)] = Eigen::Vector3d(reach * std::cos(angle), reach * std::sin(angle), height);
+  }
+  for (Eigen::Index v = 0; v < P.rows(); ++v) {
+    const double angle = std::atan2(P(v, 1), P(v, 0));
+    const bool pole = P.row(v).leftCols<2>().norm() < 1e-12;
+    const int k = pole ? 0 : static_cast<int>(std::lround(angle / (2.0 * M_PI) * steps) % steps + steps) % steps;
+    rows[static_cast<std::size_t>(k)].push_back(v);
+  }
+  std::vector<Eigen::Index> order;
+  std::vector<SightLine> lines;
+  IncrementalConstriction seen, plain;
+  std::size_t carved = 0;
+  for (int k = 0; k < steps; ++k) {
+    const std::vector<Eigen::Index>& step = rows[static_cast<std::size_t>(k)];
+    for (const Eigen::Index v : step) {
+      lines.push_back({static_cast<int>(order.size()), views[static_cast<std::size_t>(k)]});
+      order.push_back(v);
+    }
+    const Eigen::MatrixX3d batch = P(step, Eigen::all);
+    const BatchStats s = seen.add_batch(batch, views[static_cast<std::size_t>(k)]);
+    plain.add_batch(batch);
+    carved += s.sight_line_cells;
+    if (k > 0) expect_boundary_through_all(seen, s, "candlestick step " + std::to_string(k));  // step 0: one plane
+  }
+  EXPECT_GT(carved, 0u);
+  ReconstructionOptions options = surface_defaults();
+  options.sight_lines = lines;
+  const Eigen::MatrixX3d fed = P(order, Eigen::all);
+  const double scratch = triangle_recall(truth.faces, in_mesh_numbering(reconstruct_surface(fed, options), order));
+  const double live = triangle_recall(truth.faces, in_mesh_numbering(seen.surface(), order));
+  const double bridged = triangle_recall(truth.faces, in_mesh_numbering(plain.surface(), order));
+  const double truth_volume = enclosed_volume(truth.vertices.positions, truth.faces);
+  const double live_volume = seen.surface().statistics.enclosed_measure;
+  const double bridged_volume = plain.surface().statistics.enclosed_measure;
+  std::printf("candlestick: recall incremental with lines of sight %.3f, from scratch with them %.3f, without %.3f; "
+              "volume %.4f, %.4f (true %.4f)\n", live, scratch, bridged, live_volume, bridged_volume, truth_volume);
+  EXPECT_NEAR(live, scratch, 0.03);
+  EXPECT_LT(std::abs(live_volume - truth_volume), std::abs(bridged_volume - truth_volume));
+  test::expect_error<InvalidInput>([&] { seen.add_batch(P.topRows(2), Eigen::Vector3d(NAN, 0, 0)); }, {"viewpoint"});
+}
+
 TEST(IncrementalConstriction, RealMeshesRecallMatchesFromScratch) {
   for (const std::string name : {"spool", "hand"}) {
     const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/" + name + ".off"));
@@ -198,10 +270,7 @@ TEST(IncrementalConstriction, RealMeshesRecallMatchesFromScratch) {
       const SurfaceReconstruction r = inc.surface();
       expect_valid_surface(r, name);
       EXPECT_TRUE(r.statistics.interior_vertices.empty()) << name;
-      Eigen::MatrixX3i faces = r.mesh.faces;  // back to the mesh's numbering
-      for (Eigen::Index f = 0; f < faces.rows(); ++f)
-        for (int k = 0; k < 3; ++k) faces(f, k) = static_cast<int>(order[static_cast<std::size_t>(r.source[static_cast<std::size_t>(faces(f, k))])]);
-      const double recall = triangle_recall(truth.faces, faces);
+      const double recall = triangle_recall(truth.faces, in_mesh_numbering(r, order));
       std::printf("%-8s %-6s recall from scratch %.3f, incremental %.3f, wider repairs %zu\n", name.c_str(),
                   scan ? "scan" : "random", scratch, recall, inc.wider_repairs());
       EXPECT_NEAR(recall, scratch, 0.01) << name << (scan ? " scan order" : " random order");
