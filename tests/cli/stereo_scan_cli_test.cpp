@@ -108,7 +108,7 @@ TEST_P(StereoScan, ClosedGenusZeroThroughAllPointsNearTheTruthAndReplayedByteFor
 // rig's within 0.1%. The candlestick's grooves are concavities the cameras
 // see from the side.
 INSTANTIATE_TEST_SUITE_P(Objects, StereoScan,
-                         testing::Values(StereoCase{"ellipsoid", 0.005, 0.01}, StereoCase{"candlestick", 0.005, 0.02}),
+                         testing::Values(StereoCase{"ellipsoid", 0.005, 0.01}, StereoCase{"candlestick", 0.005, 0.01}),
                          [](const testing::TestParamInfo<StereoCase>& info) { return std::string(info.param.object); });
 
 TEST(StereoScanSession, InterruptedAndResumedGivesTheSameResultAndDamageIsReported) {
