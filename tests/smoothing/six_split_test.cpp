@@ -97,12 +97,9 @@ TEST(SixSplit, IsInvariantUnderScalingAndOffsetAndTessellatesWatertight) {
 // 3.5 edge lengths out; folds are now joined by a bounded damped step, and
 // max_move bounds the bulges.
 TEST(SixSplit, NeitherFoldsNorBulgesOnAScannedBoundary) {
-  const TriangleMesh mesh =
-      io::read_mesh(std::filesystem::path(SCANSTATION_SOURCE_DIR) / "tests/smoothing/data/scanned_ellipsoid.ply");
+  const TriangleMesh mesh = test::scanned_boundary();
   const auto& V = mesh.vertices.positions;
-  Eigen::MatrixX3d N = vertex_normals(V, mesh.faces);
-  enforce_sign_condition(V, mesh.faces, N);
-  const MeshEdges edges = mesh_edges(mesh.faces);
+  const auto [N, edges] = test::scheme_input(mesh);
   const BezierSurface exact = six_split(V, mesh.faces, N, edges);
   EXPECT_LT(verify_g1(exact).max_normal_angle, M_PI / 2);
   EXPECT_LT(exact.dependent_edges, 10u);  // only the folds are not G¹

@@ -4,9 +4,13 @@
 
 #include "core/io/mesh_io.h"
 #include "sim/random.h"
+#include "smoothing/mesh_edges.h"
+#include "smoothing/sign_condition.h"
+#include "smoothing/vertex_normals.h"
 #include "sim/shapes.h"
 #include "test_support.h"
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,5 +30,24 @@ inline TriangleMesh bumpy_sphere(std::uint64_t seed, double amount) {
 inline std::vector<std::string> real_mesh_names() { return {"bunny00.off", "elephant.off", "eight.off", "knot1.off"}; }
 
 inline TriangleMesh real_mesh(const std::string& name) { return io::read_mesh(cgal_data("meshes/" + name)); }
+
+/// The boundary a simulated 24-step turntable scan of an ellipsoid gave
+/// (tests/smoothing/data): thin macro triangles near the axis, nearly
+/// dependent macro edges, a cap with a 175° angle.
+inline TriangleMesh scanned_boundary() {
+  return io::read_mesh(std::filesystem::path(SCANSTATION_SOURCE_DIR) / "tests/smoothing/data/scanned_ellipsoid.ply");
+}
+
+/// What the split schemes take: area-weighted normals, turned where the sign
+/// condition fails (§9.6), and the mesh's edges.
+struct SchemeInput {
+  Eigen::MatrixX3d N;
+  MeshEdges edges;
+};
+inline SchemeInput scheme_input(const TriangleMesh& mesh) {
+  SchemeInput in{vertex_normals(mesh.vertices.positions, mesh.faces), mesh_edges(mesh.faces)};
+  enforce_sign_condition(mesh.vertices.positions, mesh.faces, in.N);
+  return in;
+}
 
 }  // namespace scanstation::test

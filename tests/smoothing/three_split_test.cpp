@@ -1,7 +1,6 @@
 #include "smoothing/three_split.h"
 
 #include "core/mesh_topology.h"
-#include "core/io/mesh_io.h"
 #include "smoothing/g1_verification.h"
 #include "smoothing/oscillation.h"
 #include "smoothing/sign_condition.h"
@@ -72,12 +71,9 @@ TEST(ThreeSplit, IsInvariantUnderScalingAndOffset) {
 TEST(ThreeSplit, BoundedStepsRemoveTheBulgesOfAScannedBoundary) {
   // A boundary through scanned points has nearly dependent edges where the
   // exact (9.4) solution bulges tens of edge lengths off the mesh.
-  const TriangleMesh mesh =
-      io::read_mesh(std::filesystem::path(SCANSTATION_SOURCE_DIR) / "tests/smoothing/data/scanned_ellipsoid.ply");
+  const TriangleMesh mesh = test::scanned_boundary();
   const auto& V = mesh.vertices.positions;
-  Eigen::MatrixX3d N = vertex_normals(V, mesh.faces);
-  enforce_sign_condition(V, mesh.faces, N);
-  const MeshEdges edges = mesh_edges(mesh.faces);
+  const auto [N, edges] = test::scheme_input(mesh);
   const BezierSurface exact = three_split(V, mesh.faces, N, edges);
   EXPECT_GT(oscillation(exact, V, mesh.faces).max_relative, 10.0);
   ThreeSplitOptions options;
