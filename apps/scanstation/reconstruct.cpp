@@ -29,7 +29,8 @@ nlohmann::json statistics_json(const BoundaryStatistics& s) {
           {"c0_used", s.c0_used ? nlohmann::json(*s.c0_used) : nlohmann::json(nullptr)},
           {"carved", s.carved},
           {"flips", s.flips},
-          {"guide_faces", s.guide_faces}};
+          {"guide_faces", s.guide_faces},
+          {"sight_line_cells", s.sight_line_cells}};
 }
 
 class ReconstructCommand final : public Command {
@@ -76,6 +77,15 @@ class ReconstructCommand final : public Command {
                      "Write the triangulation of the enclosed region (§5.8): .vtk (tetrahedra or triangles), or in 2D "
                      "any mesh format");
     cli_->add_option("--svg", svg_, "2D: draw the Delaunay graph, removed triangles and boundary (Fig. 5.2)");
+    auto* viewpoint = cli_->add_option("--viewpoint", viewpoint_,
+                                       "3D: every point was seen from X,Y,Z (one scan position): the cells between "
+                                       "each point and it are empty and carved first")
+                          ->expected(3)
+                          ->delimiter(',');
+    cli_->add_option("--viewpoints", viewpoints_,
+                     "3D: where each point was seen from, one point per input point in the same order (any "
+                     "point format); the cells between them are carved first")
+        ->excludes(viewpoint);
     cli_->footer("Output vertices are the distinct input points, bit for bit; duplicates are merged and counted.");
   }
 
@@ -101,6 +111,8 @@ class ReconstructCommand final : public Command {
       options_.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
     nlohmann::json& result = context.report["result"];
     if (cloud.dimension == 2) {
+      if (!viewpoint_.empty() || viewpoints_)
+        throw InvalidInput("--viewpoint/--viewpoints carve lines of sight in 3D; the input has two coordinates");
       if (svg_ && io::resolve_format(*svg_, std::nullopt) != io::FileFormat::svg)
         throw InvalidInput("--svg " + svg_->string() + ": expected a file name ending in .svg");
       const CurveReconstruction r = reconstruct_curve(cloud.positions.leftCols(2), options_);
@@ -117,6 +129,7 @@ class ReconstructCommand final : public Command {
       summarise(r.statistics, std::to_string(r.polygon.size()) + "-gon");
     } else {
       if (svg_) throw InvalidInput("--svg draws 2D results; the input has three coordinates");
+      add_sight_lines(cloud.positions, context);
       const SurfaceReconstruction r = reconstruct_surface(cloud.positions, options_);
       context.progress.finish();
       record_times(context, r.statistics);
@@ -151,6 +164,24 @@ class ReconstructCommand final : public Command {
     mesh.vertices.positions = points;
     mesh.faces = r.interior;
     io::write_mesh(*interior_, mesh, write);
+  }
+
+  // Lines of sight (reconstruct/line_of_sight.h) from --viewpoint or --viewpoints.
+  void add_sight_lines(const Eigen::MatrixX3d& points, CommandContext& context) {
+    if (!viewpoint_.empty()) {
+      const Eigen::Vector3d view(viewpoint_[0], viewpoint_[1], viewpoint_[2]);
+      if (!view.allFinite()) throw InvalidInput("--viewpoint: expected three finite numbers X,Y,Z");
+      for (Eigen::Index i = 0; i < points.rows(); ++i) options_.sight_lines.push_back({static_cast<int>(i), view});
+    }
+    if (!viewpoints_) return;
+    const PointCloud views = io::read_points(*viewpoints_, {std::nullopt, context.progress.stage("read viewpoints")});
+    if (views.size() != points.rows())
+      throw InvalidInput("--viewpoints " + viewpoints_->string() + ": " + std::to_string(views.size()) +
+                         " viewpoints for " + std::to_string(points.rows()) + " points; expected one per point");
+    if (views.dimension != 3)
+      throw InvalidInput("--viewpoints " + viewpoints_->string() + ": expected three coordinates per viewpoint");
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+      options_.sight_lines.push_back({static_cast<int>(i), views.positions.row(i).transpose()});
   }
 
   void configure_guide() {
@@ -206,7 +237,8 @@ class ReconstructCommand final : public Command {
   std::size_t seeds_ = VoronoiSkeletonOptions{}.max_seeds;
   std::string flips_ = "area";
   std::string guide_ = "0.7,0";
-  std::optional<std::filesystem::path> keep_, interior_;
+  std::optional<std::filesystem::path> keep_, interior_, viewpoints_;
+  std::vector<double> viewpoint_;
 };
 
 }  // namespace

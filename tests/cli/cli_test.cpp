@@ -173,6 +173,46 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
   EXPECT_THAT(r.err, testing::HasSubstr(".svg"));
 }
 
+// Viewpoints: each point of a dumbbell seen from straight outside its own
+// sphere, or all from one place. The lines of sight are carved first, the
+// guarantees hold.
+TEST(Cli, ReconstructCarvesLinesOfSightFromViewpoints) {
+  ScratchFolder dir;
+  {
+    std::ofstream points(dir / "dumbbell.xyz"), views(dir / "views.xyz");
+    // Two overlapping unit spheres (Fibonacci samples, the parts inside the
+    // other sphere left out): a waist, whose points are off the convex hull.
+    const int n = 300;
+    for (const double centre : {-0.8, 0.8})
+      for (int i = 0; i < n; ++i) {
+        const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(1.0 - z * z), a = 2.399963229728653 * i;
+        const double x = r * std::cos(a), y = r * std::sin(a);
+        if (std::hypot(x + centre - (-centre), y, z) < 1.0) continue;
+        points << x + centre << ' ' << y << ' ' << z << '\n';
+        views << 3 * x + centre << ' ' << 3 * y << ' ' << 3 * z << '\n';
+      }
+    std::ofstream(dir / "few.xyz") << "0 0 0\n1 0 0\n";
+  }
+  const std::string sphere = path(dir / "dumbbell.xyz");
+  for (const std::string& views : {" --viewpoints " + path(dir / "views.xyz"), std::string(" --viewpoint 0,0,5")}) {
+    const Outcome r = scanstation("reconstruct " + sphere + " -o " + path(dir / "s.ply") + views + " --force --report " +
+                                  path(dir / "s.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto result = nlohmann::json::parse(slurp(dir / "s.json"))["result"];
+    EXPECT_GT(result["sight_line_cells"].get<int>(), 0) << views;
+    EXPECT_EQ(result["all_on_boundary"], true) << views;
+    EXPECT_EQ(result["boundary"]["topology"]["genus"], 0) << views;
+    EXPECT_EQ(result["boundary"]["topology"]["simple"], true) << views;
+  }
+  Outcome r = scanstation("reconstruct " + sphere + " -o " + path(dir / "t.ply") + " --viewpoints " + path(dir / "few.xyz"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("few.xyz: 2 viewpoints for "));
+  std::ofstream(dir / "square.xy") << "0 0\n2 0\n2 2\n0 2\n";
+  r = scanstation("reconstruct " + path(dir / "square.xy") + " -o " + path(dir / "p.xy") + " --viewpoint 0,0,1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("two coordinates"));
+}
+
 TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   ScratchFolder dir;
   const std::string cow = path(test::cgal_data("meshes/cow.off"));
