@@ -7,7 +7,12 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace scanstation {
@@ -147,6 +152,26 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
   return x + (1.5 * radius + 2.0 * distance) * direction;
 }
 
+/// The float at or below d (at or above for round_up): the packed boxes are
+/// floats rounded outwards, so a float box holds the exact one and a miss
+/// decided in floats is a miss of the exact box.
+float round_down(double d) {
+  if (d > std::numeric_limits<float>::max()) return std::numeric_limits<float>::max();
+  if (d < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
+  const float f = static_cast<float>(d);
+  if (!(f > d)) return f;
+  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  // One float step down: the magnitude's bits grow for a negative f, shrink for a positive one.
+  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + (f < 0.0f ? 1u : std::uint32_t(-1)));
+}
+
+float round_up(double d) { return -round_down(-d); }
+
+/// Four floats in one SIMD register (GCC/Clang vector extension: SSE on
+/// x86-64, NEON on ARM), and the lane-wise comparison masks.
+using Float4 = float __attribute__((vector_size(16)));
+using Mask4 = std::int32_t __attribute__((vector_size(16)));
+
 /// The first ray: along the axis towards the nearest face of the box of all
 /// vertices, ending beyond it — the shortest segment that leaves every face
 /// behind, and an axis-aligned one, so it meets the fewest node boxes, a box
@@ -156,7 +181,11 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
 struct AxisSegment {
   Eigen::Vector3d x, q;
   Eigen::Array3d lo, hi;  ///< the segment's own box
-  std::array<double, 6> bounds;  ///< lo, hi as in FlintstoneInclusion3::Node::bounds
+  /// hi, −lo rounded up, as two Float4 matching a node's first and last 16
+  /// bytes (bounds 0–3; bounds 4–5 and two lanes of +∞ opposite skip and
+  /// first_triangle, which never exceed +∞): a node misses when one of its
+  /// bounds exceeds its match.
+  Float4 low4, high4;
   int axis = 0, u = 1, v = 2;  ///< the ray's axis and the two across it (a right-handed u, v, axis)
   int sign = 1;                ///< the sign of q − x along the axis
   // For test_ball:
@@ -175,17 +204,26 @@ struct AxisSegment {
     q[axis] = sign < 0 ? box.min()[axis] - margin : box.max()[axis] + margin;
     lo = x.array().min(q.array());
     hi = x.array().max(q.array());
+    // The far end lies beyond every box: ±∞ there, so only x is rounded.
+    constexpr float infinity = std::numeric_limits<float>::infinity();
+    std::array<float, 6> b;
     for (int k = 0; k < 3; ++k) {
-      bounds[static_cast<std::size_t>(k)] = hi[k];
-      bounds[static_cast<std::size_t>(k + 3)] = -lo[k];
+      b[static_cast<std::size_t>(k)] = k == axis && sign > 0 ? infinity : round_up(x[k]);
+      b[static_cast<std::size_t>(k + 3)] = k == axis && sign < 0 ? infinity : round_up(-x[k]);
     }
+    low4 = Float4{b[0], b[1], b[2], b[3]};
+    high4 = Float4{b[4], b[5], infinity, infinity};
     length = hi[axis] - lo[axis];
     direction[axis] = sign;
   }
   /// orientation(x, q, a, b) = sign(q − x along the axis) · the orientation
   /// of x, a, b projected across the axis (expand the determinant along q − x).
+  /// CGAL's filtered predicate called here rather than through
+  /// core/predicates.h, so it is inlined into the leaf test (the hottest
+  /// exact test: measured, the call cost as much as the filter).
   int operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
-    return sign * orientation(Eigen::Vector2d(x[u], x[v]), Eigen::Vector2d(a[u], a[v]), Eigen::Vector2d(b[u], b[v]));
+    using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_2;
+    return sign * static_cast<int>(CGAL::orientation(Point(x[u], x[v]), Point(a[u], a[v]), Point(b[u], b[v])));
   }
 };
 
@@ -241,12 +279,18 @@ inline bool misses(const Eigen::AlignedBox3d& box, const AxisSegment& s) {
   return ((box.min().array() > s.hi) || (box.max().array() < s.lo)).any();
 }
 
-inline bool misses(const FlintstoneInclusion3::Node& node, const QuerySegment& s) { return misses(node.box(), s); }
-
+/// Whether an axis-aligned segment misses a node's float box: all six
+/// comparisons at once, two 4-wide compares and no branch (a node is 32
+/// bytes: six floats, skip, first_triangle).
+static_assert(sizeof(FlintstoneInclusion3::Node) == 32 && offsetof(FlintstoneInclusion3::Node, skip) == 24);
 inline bool misses(const FlintstoneInclusion3::Node& node, const AxisSegment& s) {
-  for (std::size_t k = 0; k < 6; ++k)
-    if (node.bounds[k] > s.bounds[k]) return true;
-  return false;
+  Float4 first, last;
+  std::memcpy(&first, &node, sizeof first);
+  std::memcpy(&last, reinterpret_cast<const char*>(&node) + sizeof first, sizeof last);
+  const Mask4 over = (first > s.low4) | (last > s.high4);
+  std::uint64_t halves[2];
+  std::memcpy(halves, &over, sizeof halves);
+  return (halves[0] | halves[1]) != 0;
 }
 
 inline bool outside(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& x) {
@@ -332,14 +376,14 @@ int tree_parity(const FlintstoneTree3& tree, const Segment& s, InclusionStats& c
 /// that is missed or replaced jumps to its `skip`, any other node steps into
 /// its subtree — so no stack. The box alone prunes; the lens F(P) is tested
 /// only where it can allow a replacement (measured: testing it on every
-/// visit costs more than it prunes).
-template <class Segment>
-int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionStats& count) {
+/// visit costs more than it prunes). `misses(node)` is the box test.
+template <class Segment, class Misses>
+int sweep_parity(const FlintstoneInclusion3& index, const Segment& s, const Misses& misses, InclusionStats& count) {
   Parity<Segment> parity(s, count);
   const int end = static_cast<int>(index.nodes.size());
   for (int k = 1; k < end;) {  // nodes[0] is the root: never missed, never replaced
     const FlintstoneInclusion3::Node& node = index.nodes[static_cast<std::size_t>(k)];
-    if (misses(node, s)) {
+    if (misses(node)) {
       k = node.skip;
       continue;
     }
@@ -351,11 +395,14 @@ int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionS
       continue;
     }
     ++count.flintstone_tests;
+    // A short fan (its triangles end where the first child's begin): can x use it?
+    const int fan_end = index.nodes[static_cast<std::size_t>(k) + 1].first_triangle;
     bool x_outside = false;
-    if (node.triangle_count > 0) {  // a short fan: can x use it?
+    if (fan_end > node.first_triangle) {
       x_outside = outside(node.box(), s.x);
-      if (!x_outside && node.lens >= 0) {  // F(P) ∩ box
-        const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(node.lens)];
+      const int lens_id = index.lens_of[static_cast<std::size_t>(k)];
+      if (!x_outside && lens_id >= 0) {  // F(P) ∩ box
+        const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(lens_id)];
         const VolumeTest first = test_ball(lens.first_center, lens.first_radius, s);
         const VolumeTest second = test_ball(lens.second_center, lens.second_radius, s);
         if (first.segment_misses || second.segment_misses) {
@@ -371,13 +418,21 @@ int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionS
     }
     // Lemma 6.1: the fan over the boundary answers for the node's faces.
     ++count.replacements;
-    for (int t = node.first_triangle; t < node.first_triangle + node.triangle_count; ++t) {
+    for (int t = node.first_triangle; t < fan_end; ++t) {
       const auto& triangle = index.triangles[static_cast<std::size_t>(t)];
       if (parity.fan(triangle[0], triangle[1], triangle[2]) != 0) return -1;
     }
     k = node.skip;
   }
   return parity.result();
+}
+
+int index_parity(const FlintstoneInclusion3& index, const AxisSegment& s, InclusionStats& count) {
+  return sweep_parity(index, s, [&](const FlintstoneInclusion3::Node& node) { return misses(node, s); }, count);
+}
+
+int index_parity(const FlintstoneInclusion3& index, const QuerySegment& s, InclusionStats& count) {
+  return sweep_parity(index, s, [&](const FlintstoneInclusion3::Node& node) { return misses(node.box(), s); }, count);
 }
 
 /// Rays until one is not degenerate: the axis ray first, then rays leaving
@@ -414,7 +469,7 @@ namespace {
 /// Chain collapsing: an inner node is kept only when its box's surface area
 /// is below this share of its packed parent's (a ray across the parent
 /// meets the child with a chance about the ratio of their areas).
-constexpr double collapse_ratio = 0.8;
+constexpr double collapse_ratio = 0.9;
 
 bool worth_a_visit(const Eigen::AlignedBox3d& child, const Eigen::AlignedBox3d& parent) {
   const auto area = [](const Eigen::AlignedBox3d& box) {
@@ -431,6 +486,7 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
   index.vertices = tree.vertices;
   index.faces = tree.faces;
   index.root_ball = tree.root().stone.first;
+  index.box = tree.root().box;
   const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
   // Depth first; each packed node's children are the tree node's children
   // with chains that prune little collapsed into their own children.
@@ -441,9 +497,10 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
     index.nodes.emplace_back();
     FlintstoneInclusion3::Node& packed = index.nodes.back();
     for (int i = 0; i < 3; ++i) {
-      packed.bounds[static_cast<std::size_t>(i)] = node.box.min()[i];
-      packed.bounds[static_cast<std::size_t>(i + 3)] = -node.box.max()[i];
+      packed.bounds[static_cast<std::size_t>(i)] = round_down(node.box.min()[i]);
+      packed.bounds[static_cast<std::size_t>(i + 3)] = round_down(-node.box.max()[i]);
     }
+    index.lens_of.push_back(-1);
     packed.first_triangle = static_cast<int>(index.triangles.size());
     if (node.leaf()) {
       const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
@@ -455,12 +512,11 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
         index.triangles.push_back({point(node.corners[0]), point(a), point(b)});
       }
       if (!node.stone.is_union) {
-        packed.lens = static_cast<int>(index.lenses.size());
+        index.lens_of.back() = static_cast<int>(index.lenses.size());
         index.lenses.push_back(
             {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
       }
     }
-    packed.triangle_count = static_cast<int>(index.triangles.size()) - packed.first_triangle;
     std::vector<int> children;
     expand.assign(1, id);
     while (!expand.empty()) {
@@ -480,17 +536,16 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
 }
 
 std::size_t FlintstoneInclusion3::storage_bytes() const {
-  return nodes.size() * sizeof(Node) + lenses.size() * sizeof(Lens) + triangles.size() * sizeof(triangles[0]) +
+  return nodes.size() * sizeof(Node) + lens_of.size() * sizeof(int) + lenses.size() * sizeof(Lens) + triangles.size() * sizeof(triangles[0]) +
          static_cast<std::size_t>(vertices.size()) * sizeof(double) + static_cast<std::size_t>(faces.size()) * sizeof(int);
 }
 
 bool inside(const FlintstoneInclusion3& index, const Eigen::Vector3d& x, InclusionStats* stats) {
   InclusionStats local;
   InclusionStats& count = stats ? *stats : local;
-  const Eigen::AlignedBox3d box = index.nodes.front().box();
   ++count.flintstone_tests;
-  if (outside(box, x) || !index.root_ball.contains(x)) return false;
-  const auto answer = first_answer(x, box, index.root_ball,
+  if (outside(index.box, x) || !index.root_ball.contains(x)) return false;
+  const auto answer = first_answer(x, index.box, index.root_ball,
                                    [&](const auto& segment) { return index_parity(index, segment, count); });
   return answer ? *answer : inside_brute_force(index.vertices, index.faces, x);
 }

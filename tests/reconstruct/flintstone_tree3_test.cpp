@@ -163,8 +163,20 @@ TEST(FlintstoneInclusion3, PackedIndexAnswersAsTheTree) {
     const TriangleMesh mesh = io::read_mesh(test::cgal_data("meshes/" + name));
     const FlintstoneTree3 tree = flintstone_tree(mesh);
     const FlintstoneInclusion3 index = inclusion_index(tree);
-    ASSERT_TRUE(index.nodes.front().box().isApprox(tree.root().box, 0.0)) << name;
+    ASSERT_TRUE(index.box.isApprox(tree.root().box, 0.0)) << name;
+    EXPECT_TRUE(index.nodes.front().box().contains(index.box)) << name;
     EXPECT_LE(index.nodes.size(), tree.nodes.size()) << name;
+    // The float boxes, rounded outwards, hold their triangles exactly.
+    std::size_t loose = 0, fans = 0;
+    for (int k = 0; k < static_cast<int>(index.nodes.size()); ++k) {
+      const auto& node = index.nodes[static_cast<std::size_t>(k)];
+      const int count = index.triangle_count(k);
+      fans += !node.leaf(k) && count > 0;
+      for (int t = node.first_triangle; t < node.first_triangle + count; ++t)
+        for (const Eigen::Vector3d& corner : index.triangles[static_cast<std::size_t>(t)]) loose += !node.box().contains(corner);
+    }
+    EXPECT_EQ(loose, 0u) << name;
+    EXPECT_GT(fans, 0u) << name;
     EXPECT_GT(index.storage_bytes(), 0u) << name;
     int disagreements = 0, inside_count = 0;
     const std::vector<Eigen::Vector3d> queries = queries_near(mesh, 6000, 23);
