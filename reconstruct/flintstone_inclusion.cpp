@@ -155,17 +155,17 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
 /// The float at or below d (at or above for round_up): the packed boxes are
 /// floats rounded outwards, so a float box holds the exact one and a miss
 /// decided in floats is a miss of the exact box.
-float round_down(double d) {
-  if (d > std::numeric_limits<float>::max()) return std::numeric_limits<float>::max();
-  if (d < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
-  const float f = static_cast<float>(d);
-  if (!(f > d)) return f;
-  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
-  // One float step down: the magnitude's bits grow for a negative f, shrink for a positive one.
-  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + (f < 0.0f ? 1u : std::uint32_t(-1)));
+inline float round_up(double d) {
+  constexpr double largest = std::numeric_limits<float>::max();
+  const float f = static_cast<float>(std::clamp(d, -largest, largest));  // in range: a defined conversion
+  if (f >= d) return f;
+  if (d > largest) return std::numeric_limits<float>::infinity();
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  // One float step up: the magnitude's bits grow for a positive f, shrink for a negative one.
+  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + (f > 0.0f ? 1u : std::uint32_t(-1)));
 }
 
-float round_up(double d) { return -round_down(-d); }
+inline float round_down(double d) { return -round_up(-d); }
 
 /// Four floats in one SIMD register (GCC/Clang vector extension: SSE on
 /// x86-64, NEON on ARM), and the lane-wise comparison masks.
@@ -192,13 +192,14 @@ struct AxisSegment {
   Eigen::Array3d origin, direction = Eigen::Array3d::Zero();
   double length = 0.0;
   AxisSegment(const Eigen::Vector3d& point, const Eigen::AlignedBox3d& box) : x(point), q(point), origin(point.array()) {
-    const Eigen::Array3d below = x.array() - box.min().array(), above = box.max().array() - x.array();
-    Eigen::Index down_axis = 0, up_axis = 0;
-    const double down = below.minCoeff(&down_axis), up = above.minCoeff(&up_axis);
-    axis = static_cast<int>(down < up ? down_axis : up_axis);
-    u = (axis + 1) % 3;
-    v = (axis + 2) % 3;
-    sign = down < up ? -1 : 1;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const double below = x[k] - box.min()[k], above = box.max()[k] - x[k];
+      if (below < shortest) shortest = below, axis = k, sign = -1;
+      if (above < shortest) shortest = above, axis = k, sign = 1;
+    }
+    u = axis == 2 ? 0 : axis + 1;
+    v = axis == 0 ? 2 : axis - 1;
     // Strictly beyond the box, whatever the rounding at large coordinates.
     const double margin = 1e-3 * box.sizes().maxCoeff() + 1e-6 * std::abs(x[axis]);
     q[axis] = sign < 0 ? box.min()[axis] - margin : box.max()[axis] + margin;
@@ -288,9 +289,13 @@ inline bool misses(const FlintstoneInclusion3::Node& node, const AxisSegment& s)
   std::memcpy(&first, &node, sizeof first);
   std::memcpy(&last, reinterpret_cast<const char*>(&node) + sizeof first, sizeof last);
   const Mask4 over = (first > s.low4) | (last > s.high4);
+#if defined(__SSE__)
+  return __builtin_ia32_movmskps(reinterpret_cast<Float4>(over)) != 0;  // one instruction
+#else
   std::uint64_t halves[2];
   std::memcpy(halves, &over, sizeof halves);
   return (halves[0] | halves[1]) != 0;
+#endif
 }
 
 inline bool outside(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& x) {
