@@ -399,13 +399,13 @@ int sweep_parity(const FlintstoneInclusion3& index, const Segment& s, const Miss
       ++k;
       continue;
     }
-    ++count.flintstone_tests;
+    const int lens_id = index.lens_of[static_cast<std::size_t>(k)];
+    count.flintstone_tests += lens_id != FlintstoneInclusion3::sorting_node;
     // A short fan (its triangles end where the first child's begin): can x use it?
     const int fan_end = index.nodes[static_cast<std::size_t>(k) + 1].first_triangle;
     bool x_outside = false;
     if (fan_end > node.first_triangle) {
       x_outside = outside(node.box(), s.x);
-      const int lens_id = index.lens_of[static_cast<std::size_t>(k)];
       if (!x_outside && lens_id >= 0) {  // F(P) ∩ box
         const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(lens_id)];
         const VolumeTest first = test_ball(lens.first_center, lens.first_radius, s);
@@ -484,6 +484,101 @@ bool worth_a_visit(const Eigen::AlignedBox3d& child, const Eigen::AlignedBox3d& 
   return area(child) < collapse_ratio * area(parent);
 }
 
+/// Packs a tree depth first: each packed node's children are the tree
+/// node's children with chains that prune little collapsed into their own
+/// children, and many children are sorted under boxes of their own.
+class Packer {
+ public:
+  Packer(const FlintstoneTree3& tree, FlintstoneInclusion3& index) : tree_(tree), index_(index) {}
+
+  void add(int id) {
+    const FlintstoneNode3& node = tree_.nodes[static_cast<std::size_t>(id)];
+    const int k = open(node.box);
+    if (node.leaf()) {
+      const int f = tree_.face_order[static_cast<std::size_t>(node.first_face)];
+      index_.triangles.push_back({point(tree_.faces(f, 0)), point(tree_.faces(f, 1)), point(tree_.faces(f, 2))});
+    } else if (id != 0 && node.boundary_count <= fan_limit) {
+      for (int e = 0; e < node.boundary_count; ++e) {
+        const auto [a, b] = tree_.boundary[static_cast<std::size_t>(node.first_boundary + e)];
+        if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
+        index_.triangles.push_back({point(node.corners[0]), point(a), point(b)});
+      }
+      if (!node.stone.is_union) {
+        index_.lens_of.back() = static_cast<int>(index_.lenses.size());
+        index_.lenses.push_back(
+            {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
+      }
+    }
+    std::vector<int> children;
+    expand_.assign(1, id);
+    while (!expand_.empty()) {
+      const FlintstoneNode3& from = tree_.nodes[static_cast<std::size_t>(expand_.back())];
+      expand_.pop_back();
+      for (int c = from.first_child + from.child_count - 1; c >= from.first_child; --c) {
+        const FlintstoneNode3& child = tree_.nodes[static_cast<std::size_t>(c)];
+        if (!child.leaf() && !worth_a_visit(child.box, node.box)) expand_.push_back(c);
+        else children.push_back(c);
+      }
+    }
+    place(children);
+    close(k);
+  }
+
+ private:
+  /// Many children (the collapsed top of the tree) would each cost a box
+  /// test on every visit: above `wide` they are sorted along the longest
+  /// axis of their joint box and split in halves under a node of that box
+  /// (no fan: always refined, so Lemma 6.1 is still decided by the tree's
+  /// own nodes below it).
+  static constexpr std::size_t wide = 4;
+
+  void place(std::vector<int> ids) {
+    if (ids.size() <= wide) {
+      for (const int c : ids) add(c);
+      return;
+    }
+    Eigen::AlignedBox3d joint;
+    for (const int c : ids) joint.extend(tree_.nodes[static_cast<std::size_t>(c)].box);
+    Eigen::Index axis = 0;
+    joint.sizes().maxCoeff(&axis);
+    std::sort(ids.begin(), ids.end(), [&](int a, int b) {
+      return tree_.nodes[static_cast<std::size_t>(a)].box.center()[axis] < tree_.nodes[static_cast<std::size_t>(b)].box.center()[axis];
+    });
+    const auto middle = ids.begin() + static_cast<std::ptrdiff_t>(ids.size() / 2);
+    for (std::vector<int> half : {std::vector<int>(ids.begin(), middle), std::vector<int>(middle, ids.end())}) {
+      if (half.size() == 1) {
+        add(half.front());
+        continue;
+      }
+      Eigen::AlignedBox3d box;
+      for (const int c : half) box.extend(tree_.nodes[static_cast<std::size_t>(c)].box);
+      const int k = open(box);
+      index_.lens_of.back() = FlintstoneInclusion3::sorting_node;
+      place(half);
+      close(k);
+    }
+  }
+
+  int open(const Eigen::AlignedBox3d& box) {
+    FlintstoneInclusion3::Node packed;
+    for (int i = 0; i < 3; ++i) {
+      packed.bounds[static_cast<std::size_t>(i)] = round_down(box.min()[i]);
+      packed.bounds[static_cast<std::size_t>(i + 3)] = round_down(-box.max()[i]);
+    }
+    packed.first_triangle = static_cast<int>(index_.triangles.size());
+    index_.nodes.push_back(packed);
+    index_.lens_of.push_back(-1);
+    return static_cast<int>(index_.nodes.size()) - 1;
+  }
+  void close(int k) { index_.nodes[static_cast<std::size_t>(k)].skip = static_cast<int>(index_.nodes.size()); }
+
+  Eigen::Vector3d point(int v) const { return tree_.vertices.row(v).transpose(); }
+
+  const FlintstoneTree3& tree_;
+  FlintstoneInclusion3& index_;
+  std::vector<int> expand_;
+};
+
 }  // namespace
 
 FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
@@ -492,51 +587,7 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
   index.faces = tree.faces;
   index.root_ball = tree.root().stone.first;
   index.box = tree.root().box;
-  const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
-  // Depth first; each packed node's children are the tree node's children
-  // with chains that prune little collapsed into their own children.
-  std::vector<int> expand;
-  const auto add = [&](const auto& self, int id) -> void {
-    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
-    const std::size_t k = index.nodes.size();
-    index.nodes.emplace_back();
-    FlintstoneInclusion3::Node& packed = index.nodes.back();
-    for (int i = 0; i < 3; ++i) {
-      packed.bounds[static_cast<std::size_t>(i)] = round_down(node.box.min()[i]);
-      packed.bounds[static_cast<std::size_t>(i + 3)] = round_down(-node.box.max()[i]);
-    }
-    index.lens_of.push_back(-1);
-    packed.first_triangle = static_cast<int>(index.triangles.size());
-    if (node.leaf()) {
-      const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
-      index.triangles.push_back({point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2))});
-    } else if (id != 0 && node.boundary_count <= fan_limit) {
-      for (int e = 0; e < node.boundary_count; ++e) {
-        const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
-        if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
-        index.triangles.push_back({point(node.corners[0]), point(a), point(b)});
-      }
-      if (!node.stone.is_union) {
-        index.lens_of.back() = static_cast<int>(index.lenses.size());
-        index.lenses.push_back(
-            {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
-      }
-    }
-    std::vector<int> children;
-    expand.assign(1, id);
-    while (!expand.empty()) {
-      const FlintstoneNode3& from = tree.nodes[static_cast<std::size_t>(expand.back())];
-      expand.pop_back();
-      for (int c = from.first_child + from.child_count - 1; c >= from.first_child; --c) {
-        const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(c)];
-        if (!child.leaf() && !worth_a_visit(child.box, node.box)) expand.push_back(c);
-        else children.push_back(c);
-      }
-    }
-    for (const int c : children) self(self, c);
-    index.nodes[k].skip = static_cast<int>(index.nodes.size());
-  };
-  add(add, 0);
+  Packer(tree, index).add(0);
   return index;
 }
 

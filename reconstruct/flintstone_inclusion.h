@@ -81,6 +81,9 @@ struct FlintstoneInclusion3 {
     double first_radius = 0.0, second_radius = 0.0;
   };
   std::vector<Node> nodes;  ///< nodes[0] is the root (the whole mesh)
+  /// lens_of[k] of a node the packing added above many children: a box
+  /// only, no flintstone.
+  static constexpr int sorting_node = -2;
   std::vector<int> lens_of;  ///< per node: F(P) = lenses[k].first ∩ .second; -1: the box only
   std::vector<Lens> lenses;
   std::vector<std::array<Eigen::Vector3d, 3>> triangles;
