@@ -399,13 +399,14 @@ int sweep_parity(const FlintstoneInclusion3& index, const Segment& s, const Miss
       ++k;
       continue;
     }
-    const int lens_id = index.lens_of[static_cast<std::size_t>(k)];
-    count.flintstone_tests += lens_id != FlintstoneInclusion3::sorting_node;
-    // A short fan (its triangles end where the first child's begin): can x use it?
+    // A short fan (its triangles end where the first child's begin): can x
+    // use it? Only here is a flintstone tested (sorting nodes have no fan).
     const int fan_end = index.nodes[static_cast<std::size_t>(k) + 1].first_triangle;
     bool x_outside = false;
     if (fan_end > node.first_triangle) {
+      ++count.flintstone_tests;
       x_outside = outside(node.box(), s.x);
+      const int lens_id = index.lens_of[static_cast<std::size_t>(k)];
       if (!x_outside && lens_id >= 0) {  // F(P) ∩ box
         const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(lens_id)];
         const VolumeTest first = test_ball(lens.first_center, lens.first_radius, s);
@@ -474,7 +475,7 @@ namespace {
 /// Chain collapsing: an inner node is kept only when its box's surface area
 /// is below this share of its packed parent's (a ray across the parent
 /// meets the child with a chance about the ratio of their areas).
-constexpr double collapse_ratio = 0.9;
+constexpr double collapse_ratio = 0.8;
 
 bool worth_a_visit(const Eigen::AlignedBox3d& child, const Eigen::AlignedBox3d& parent) {
   const auto area = [](const Eigen::AlignedBox3d& box) {
