@@ -152,7 +152,7 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
   return x + (1.5 * radius + 2.0 * distance) * direction;
 }
 
-/// The float at or below d (at or above for round_up): the packed boxes are
+/// The float at or above d (at or below for round_down): the packed boxes are
 /// floats rounded outwards, so a float box holds the exact one and a miss
 /// decided in floats is a miss of the exact box.
 inline float round_up(double d) {
