@@ -7,7 +7,12 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace scanstation {
@@ -92,9 +97,17 @@ struct EdgeSide {
 /// Does segment x q cross triangle a b c? Exact: orientation signs only.
 /// `degenerate` when the answer would depend on how a touch is counted.
 /// `side(a, b)` is orientation(x, q, a, b) (cheaper for an axis-aligned x q).
+/// The sides of the line x q against the three edges come first: the segments
+/// reaching a leaf mostly pass beside its triangle, and strictly mixed signs
+/// prove that the whole line misses the closed triangle (its projection along
+/// x q lies outside the projected triangle), so neither plane test is needed.
 template <class Side>
 Crossing3 segment_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                            const Eigen::Vector3d& x, const Eigen::Vector3d& q, const Side& side) {
+  const int e1 = side(a, b), e2 = side(b, c);
+  if (e1 * e2 < 0) return Crossing3::none;
+  const int e3 = side(c, a);
+  if (e1 * e3 < 0 || e2 * e3 < 0) return Crossing3::none;
   const int sx = orientation(a, b, c, x), sq = orientation(a, b, c, q);
   if (sx == 0 && sq == 0 && collinear(a, b, c)) return Crossing3::none;  // a flat face: its edges are its neighbours'
   if (sx == 0) {
@@ -107,9 +120,7 @@ Crossing3 segment_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, c
   }
   if (sq == 0) return Crossing3::degenerate;
   if (sx == sq) return Crossing3::none;
-  const int e1 = side(a, b), e2 = side(b, c), e3 = side(c, a);
   if ((e1 > 0 && e2 > 0 && e3 > 0) || (e1 < 0 && e2 < 0 && e3 < 0)) return Crossing3::once;
-  if ((std::min({e1, e2, e3}) < 0 && std::max({e1, e2, e3}) > 0)) return Crossing3::none;
   return Crossing3::degenerate;  // through an edge or a vertex
 }
 
@@ -141,6 +152,26 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
   return x + (1.5 * radius + 2.0 * distance) * direction;
 }
 
+/// The float at or above d (at or below for round_down): the packed boxes are
+/// floats rounded outwards, so a float box holds the exact one and a miss
+/// decided in floats is a miss of the exact box.
+inline float round_up(double d) {
+  constexpr double largest = std::numeric_limits<float>::max();
+  const float f = static_cast<float>(std::clamp(d, -largest, largest));  // in range: a defined conversion
+  if (f >= d) return f;
+  if (d > largest) return std::numeric_limits<float>::infinity();
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  // One float step up: the magnitude's bits grow for a positive f, shrink for a negative one.
+  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + (f > 0.0f ? 1u : std::uint32_t(-1)));
+}
+
+inline float round_down(double d) { return -round_up(-d); }
+
+/// Four floats in one SIMD register (GCC/Clang vector extension: SSE on
+/// x86-64, NEON on ARM), and the lane-wise comparison masks.
+using Float4 = float __attribute__((vector_size(16)));
+using Mask4 = std::int32_t __attribute__((vector_size(16)));
+
 /// The first ray: along the axis towards the nearest face of the box of all
 /// vertices, ending beyond it — the shortest segment that leaves every face
 /// behind, and an axis-aligned one, so it meets the fewest node boxes, a box
@@ -150,36 +181,50 @@ Eigen::Vector3d outward_point(const Eigen::Vector3d& x, int attempt, const Eigen
 struct AxisSegment {
   Eigen::Vector3d x, q;
   Eigen::Array3d lo, hi;  ///< the segment's own box
-  std::array<double, 6> bounds;  ///< lo, hi as in FlintstoneInclusion3::Node::bounds
+  /// hi, −lo rounded up, as two Float4 matching a node's first and last 16
+  /// bytes (bounds 0–3; bounds 4–5 and two lanes of +∞ opposite skip and
+  /// first_triangle, which never exceed +∞): a node misses when one of its
+  /// bounds exceeds its match.
+  Float4 low4, high4;
   int axis = 0, u = 1, v = 2;  ///< the ray's axis and the two across it (a right-handed u, v, axis)
   int sign = 1;                ///< the sign of q − x along the axis
   // For test_ball:
   Eigen::Array3d origin, direction = Eigen::Array3d::Zero();
   double length = 0.0;
   AxisSegment(const Eigen::Vector3d& point, const Eigen::AlignedBox3d& box) : x(point), q(point), origin(point.array()) {
-    const Eigen::Array3d below = x.array() - box.min().array(), above = box.max().array() - x.array();
-    Eigen::Index down_axis = 0, up_axis = 0;
-    const double down = below.minCoeff(&down_axis), up = above.minCoeff(&up_axis);
-    axis = static_cast<int>(down < up ? down_axis : up_axis);
-    u = (axis + 1) % 3;
-    v = (axis + 2) % 3;
-    sign = down < up ? -1 : 1;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const double below = x[k] - box.min()[k], above = box.max()[k] - x[k];
+      if (below < shortest) shortest = below, axis = k, sign = -1;
+      if (above < shortest) shortest = above, axis = k, sign = 1;
+    }
+    u = axis == 2 ? 0 : axis + 1;
+    v = axis == 0 ? 2 : axis - 1;
     // Strictly beyond the box, whatever the rounding at large coordinates.
     const double margin = 1e-3 * box.sizes().maxCoeff() + 1e-6 * std::abs(x[axis]);
     q[axis] = sign < 0 ? box.min()[axis] - margin : box.max()[axis] + margin;
     lo = x.array().min(q.array());
     hi = x.array().max(q.array());
+    // The far end lies beyond every box: ±∞ there, so only x is rounded.
+    constexpr float infinity = std::numeric_limits<float>::infinity();
+    std::array<float, 6> b;
     for (int k = 0; k < 3; ++k) {
-      bounds[static_cast<std::size_t>(k)] = hi[k];
-      bounds[static_cast<std::size_t>(k + 3)] = -lo[k];
+      b[static_cast<std::size_t>(k)] = k == axis && sign > 0 ? infinity : round_up(x[k]);
+      b[static_cast<std::size_t>(k + 3)] = k == axis && sign < 0 ? infinity : round_up(-x[k]);
     }
+    low4 = Float4{b[0], b[1], b[2], b[3]};
+    high4 = Float4{b[4], b[5], infinity, infinity};
     length = hi[axis] - lo[axis];
     direction[axis] = sign;
   }
   /// orientation(x, q, a, b) = sign(q − x along the axis) · the orientation
   /// of x, a, b projected across the axis (expand the determinant along q − x).
+  /// CGAL's filtered predicate called here rather than through
+  /// core/predicates.h, so it is inlined into the leaf test (the hottest
+  /// exact test: measured, the call cost as much as the filter).
   int operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
-    return sign * orientation(Eigen::Vector2d(x[u], x[v]), Eigen::Vector2d(a[u], a[v]), Eigen::Vector2d(b[u], b[v]));
+    using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_2;
+    return sign * static_cast<int>(CGAL::orientation(Point(x[u], x[v]), Point(a[u], a[v]), Point(b[u], b[v])));
   }
 };
 
@@ -235,12 +280,22 @@ inline bool misses(const Eigen::AlignedBox3d& box, const AxisSegment& s) {
   return ((box.min().array() > s.hi) || (box.max().array() < s.lo)).any();
 }
 
-inline bool misses(const FlintstoneInclusion3::Node& node, const QuerySegment& s) { return misses(node.box(), s); }
-
+/// Whether an axis-aligned segment misses a node's float box: all six
+/// comparisons at once, two 4-wide compares and no branch (a node is 32
+/// bytes: six floats, skip, first_triangle).
+static_assert(sizeof(FlintstoneInclusion3::Node) == 32 && offsetof(FlintstoneInclusion3::Node, skip) == 24);
 inline bool misses(const FlintstoneInclusion3::Node& node, const AxisSegment& s) {
-  for (std::size_t k = 0; k < 6; ++k)
-    if (node.bounds[k] > s.bounds[k]) return true;
-  return false;
+  Float4 first, last;
+  std::memcpy(&first, &node, sizeof first);
+  std::memcpy(&last, reinterpret_cast<const char*>(&node) + sizeof first, sizeof last);
+  const Mask4 over = (first > s.low4) | (last > s.high4);
+#if defined(__SSE__)
+  return __builtin_ia32_movmskps(reinterpret_cast<Float4>(over)) != 0;  // one instruction
+#else
+  std::uint64_t halves[2];
+  std::memcpy(halves, &over, sizeof halves);
+  return (halves[0] | halves[1]) != 0;
+#endif
 }
 
 inline bool outside(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& x) {
@@ -326,14 +381,14 @@ int tree_parity(const FlintstoneTree3& tree, const Segment& s, InclusionStats& c
 /// that is missed or replaced jumps to its `skip`, any other node steps into
 /// its subtree — so no stack. The box alone prunes; the lens F(P) is tested
 /// only where it can allow a replacement (measured: testing it on every
-/// visit costs more than it prunes).
-template <class Segment>
-int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionStats& count) {
+/// visit costs more than it prunes). `misses(node)` is the box test.
+template <class Segment, class Misses>
+int sweep_parity(const FlintstoneInclusion3& index, const Segment& s, const Misses& misses, InclusionStats& count) {
   Parity<Segment> parity(s, count);
   const int end = static_cast<int>(index.nodes.size());
   for (int k = 1; k < end;) {  // nodes[0] is the root: never missed, never replaced
     const FlintstoneInclusion3::Node& node = index.nodes[static_cast<std::size_t>(k)];
-    if (misses(node, s)) {
+    if (misses(node)) {
       k = node.skip;
       continue;
     }
@@ -344,12 +399,16 @@ int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionS
       ++k;
       continue;
     }
-    ++count.flintstone_tests;
+    // A short fan (its triangles end where the first child's begin): can x
+    // use it? Only here is a flintstone tested (sorting nodes have no fan).
+    const int fan_end = index.nodes[static_cast<std::size_t>(k) + 1].first_triangle;
     bool x_outside = false;
-    if (node.triangle_count > 0) {  // a short fan: can x use it?
+    if (fan_end > node.first_triangle) {
+      ++count.flintstone_tests;
       x_outside = outside(node.box(), s.x);
-      if (!x_outside && node.lens >= 0) {  // F(P) ∩ box
-        const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(node.lens)];
+      const int lens_id = index.lens_of[static_cast<std::size_t>(k)];
+      if (!x_outside && lens_id >= 0) {  // F(P) ∩ box
+        const FlintstoneInclusion3::Lens& lens = index.lenses[static_cast<std::size_t>(lens_id)];
         const VolumeTest first = test_ball(lens.first_center, lens.first_radius, s);
         const VolumeTest second = test_ball(lens.second_center, lens.second_radius, s);
         if (first.segment_misses || second.segment_misses) {
@@ -365,13 +424,21 @@ int index_parity(const FlintstoneInclusion3& index, const Segment& s, InclusionS
     }
     // Lemma 6.1: the fan over the boundary answers for the node's faces.
     ++count.replacements;
-    for (int t = node.first_triangle; t < node.first_triangle + node.triangle_count; ++t) {
+    for (int t = node.first_triangle; t < fan_end; ++t) {
       const auto& triangle = index.triangles[static_cast<std::size_t>(t)];
       if (parity.fan(triangle[0], triangle[1], triangle[2]) != 0) return -1;
     }
     k = node.skip;
   }
   return parity.result();
+}
+
+int index_parity(const FlintstoneInclusion3& index, const AxisSegment& s, InclusionStats& count) {
+  return sweep_parity(index, s, [&](const FlintstoneInclusion3::Node& node) { return misses(node, s); }, count);
+}
+
+int index_parity(const FlintstoneInclusion3& index, const QuerySegment& s, InclusionStats& count) {
+  return sweep_parity(index, s, [&](const FlintstoneInclusion3::Node& node) { return misses(node.box(), s); }, count);
 }
 
 /// Rays until one is not degenerate: the axis ray first, then rays leaving
@@ -418,6 +485,101 @@ bool worth_a_visit(const Eigen::AlignedBox3d& child, const Eigen::AlignedBox3d& 
   return area(child) < collapse_ratio * area(parent);
 }
 
+/// Packs a tree depth first: each packed node's children are the tree
+/// node's children with chains that prune little collapsed into their own
+/// children, and many children are sorted under boxes of their own.
+class Packer {
+ public:
+  Packer(const FlintstoneTree3& tree, FlintstoneInclusion3& index) : tree_(tree), index_(index) {}
+
+  void add(int id) {
+    const FlintstoneNode3& node = tree_.nodes[static_cast<std::size_t>(id)];
+    const int k = open(node.box);
+    if (node.leaf()) {
+      const int f = tree_.face_order[static_cast<std::size_t>(node.first_face)];
+      index_.triangles.push_back({point(tree_.faces(f, 0)), point(tree_.faces(f, 1)), point(tree_.faces(f, 2))});
+    } else if (id != 0 && node.boundary_count <= fan_limit) {
+      for (int e = 0; e < node.boundary_count; ++e) {
+        const auto [a, b] = tree_.boundary[static_cast<std::size_t>(node.first_boundary + e)];
+        if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
+        index_.triangles.push_back({point(node.corners[0]), point(a), point(b)});
+      }
+      if (!node.stone.is_union) {
+        index_.lens_of.back() = static_cast<int>(index_.lenses.size());
+        index_.lenses.push_back(
+            {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
+      }
+    }
+    std::vector<int> children;
+    expand_.assign(1, id);
+    while (!expand_.empty()) {
+      const FlintstoneNode3& from = tree_.nodes[static_cast<std::size_t>(expand_.back())];
+      expand_.pop_back();
+      for (int c = from.first_child + from.child_count - 1; c >= from.first_child; --c) {
+        const FlintstoneNode3& child = tree_.nodes[static_cast<std::size_t>(c)];
+        if (!child.leaf() && !worth_a_visit(child.box, node.box)) expand_.push_back(c);
+        else children.push_back(c);
+      }
+    }
+    place(children);
+    close(k);
+  }
+
+ private:
+  /// Many children (the collapsed top of the tree) would each cost a box
+  /// test on every visit: above `wide` they are sorted along the longest
+  /// axis of their joint box and split in halves under a node of that box
+  /// (no fan: always refined, so Lemma 6.1 is still decided by the tree's
+  /// own nodes below it).
+  static constexpr std::size_t wide = 4;
+
+  void place(std::vector<int> ids) {
+    if (ids.size() <= wide) {
+      for (const int c : ids) add(c);
+      return;
+    }
+    Eigen::AlignedBox3d joint;
+    for (const int c : ids) joint.extend(tree_.nodes[static_cast<std::size_t>(c)].box);
+    Eigen::Index axis = 0;
+    joint.sizes().maxCoeff(&axis);
+    std::sort(ids.begin(), ids.end(), [&](int a, int b) {
+      return tree_.nodes[static_cast<std::size_t>(a)].box.center()[axis] < tree_.nodes[static_cast<std::size_t>(b)].box.center()[axis];
+    });
+    const auto middle = ids.begin() + static_cast<std::ptrdiff_t>(ids.size() / 2);
+    for (std::vector<int> half : {std::vector<int>(ids.begin(), middle), std::vector<int>(middle, ids.end())}) {
+      if (half.size() == 1) {
+        add(half.front());
+        continue;
+      }
+      Eigen::AlignedBox3d box;
+      for (const int c : half) box.extend(tree_.nodes[static_cast<std::size_t>(c)].box);
+      const int k = open(box);
+      index_.lens_of.back() = FlintstoneInclusion3::sorting_node;
+      place(half);
+      close(k);
+    }
+  }
+
+  int open(const Eigen::AlignedBox3d& box) {
+    FlintstoneInclusion3::Node packed;
+    for (int i = 0; i < 3; ++i) {
+      packed.bounds[static_cast<std::size_t>(i)] = round_down(box.min()[i]);
+      packed.bounds[static_cast<std::size_t>(i + 3)] = round_down(-box.max()[i]);
+    }
+    packed.first_triangle = static_cast<int>(index_.triangles.size());
+    index_.nodes.push_back(packed);
+    index_.lens_of.push_back(-1);
+    return static_cast<int>(index_.nodes.size()) - 1;
+  }
+  void close(int k) { index_.nodes[static_cast<std::size_t>(k)].skip = static_cast<int>(index_.nodes.size()); }
+
+  Eigen::Vector3d point(int v) const { return tree_.vertices.row(v).transpose(); }
+
+  const FlintstoneTree3& tree_;
+  FlintstoneInclusion3& index_;
+  std::vector<int> expand_;
+};
+
 }  // namespace
 
 FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
@@ -425,66 +587,22 @@ FlintstoneInclusion3 inclusion_index(const FlintstoneTree3& tree) {
   index.vertices = tree.vertices;
   index.faces = tree.faces;
   index.root_ball = tree.root().stone.first;
-  const auto point = [&](int v) { return Eigen::Vector3d(tree.vertices.row(v).transpose()); };
-  // Depth first; each packed node's children are the tree node's children
-  // with chains that prune little collapsed into their own children.
-  std::vector<int> expand;
-  const auto add = [&](const auto& self, int id) -> void {
-    const FlintstoneNode3& node = tree.nodes[static_cast<std::size_t>(id)];
-    const std::size_t k = index.nodes.size();
-    index.nodes.emplace_back();
-    FlintstoneInclusion3::Node& packed = index.nodes.back();
-    for (int i = 0; i < 3; ++i) {
-      packed.bounds[static_cast<std::size_t>(i)] = node.box.min()[i];
-      packed.bounds[static_cast<std::size_t>(i + 3)] = -node.box.max()[i];
-    }
-    packed.first_triangle = static_cast<int>(index.triangles.size());
-    if (node.leaf()) {
-      const int f = tree.face_order[static_cast<std::size_t>(node.first_face)];
-      index.triangles.push_back({point(tree.faces(f, 0)), point(tree.faces(f, 1)), point(tree.faces(f, 2))});
-    } else if (id != 0 && node.boundary_count <= fan_limit) {
-      for (int e = 0; e < node.boundary_count; ++e) {
-        const auto [a, b] = tree.boundary[static_cast<std::size_t>(node.first_boundary + e)];
-        if (a == node.corners[0] || b == node.corners[0]) continue;  // a flat fan triangle
-        index.triangles.push_back({point(node.corners[0]), point(a), point(b)});
-      }
-      if (!node.stone.is_union) {
-        packed.lens = static_cast<int>(index.lenses.size());
-        index.lenses.push_back(
-            {node.stone.first.center, node.stone.second.center, node.stone.first.radius, node.stone.second.radius});
-      }
-    }
-    packed.triangle_count = static_cast<int>(index.triangles.size()) - packed.first_triangle;
-    std::vector<int> children;
-    expand.assign(1, id);
-    while (!expand.empty()) {
-      const FlintstoneNode3& from = tree.nodes[static_cast<std::size_t>(expand.back())];
-      expand.pop_back();
-      for (int c = from.first_child + from.child_count - 1; c >= from.first_child; --c) {
-        const FlintstoneNode3& child = tree.nodes[static_cast<std::size_t>(c)];
-        if (!child.leaf() && !worth_a_visit(child.box, node.box)) expand.push_back(c);
-        else children.push_back(c);
-      }
-    }
-    for (const int c : children) self(self, c);
-    index.nodes[k].skip = static_cast<int>(index.nodes.size());
-  };
-  add(add, 0);
+  index.box = tree.root().box;
+  Packer(tree, index).add(0);
   return index;
 }
 
 std::size_t FlintstoneInclusion3::storage_bytes() const {
-  return nodes.size() * sizeof(Node) + lenses.size() * sizeof(Lens) + triangles.size() * sizeof(triangles[0]) +
+  return nodes.size() * sizeof(Node) + lens_of.size() * sizeof(int) + lenses.size() * sizeof(Lens) + triangles.size() * sizeof(triangles[0]) +
          static_cast<std::size_t>(vertices.size()) * sizeof(double) + static_cast<std::size_t>(faces.size()) * sizeof(int);
 }
 
 bool inside(const FlintstoneInclusion3& index, const Eigen::Vector3d& x, InclusionStats* stats) {
   InclusionStats local;
   InclusionStats& count = stats ? *stats : local;
-  const Eigen::AlignedBox3d box = index.nodes.front().box();
   ++count.flintstone_tests;
-  if (outside(box, x) || !index.root_ball.contains(x)) return false;
-  const auto answer = first_answer(x, box, index.root_ball,
+  if (outside(index.box, x) || !index.root_ball.contains(x)) return false;
+  const auto answer = first_answer(x, index.box, index.root_ball,
                                    [&](const auto& segment) { return index_parity(index, segment, count); });
   return answer ? *answer : inside_brute_force(index.vertices, index.faces, x);
 }

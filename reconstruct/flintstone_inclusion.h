@@ -49,24 +49,27 @@ bool inside(const FlintstoneTree3& tree, const Eigen::Vector3d& x, InclusionStat
 /// answers with fewer and cheaper node visits.
 ///  - Nodes are laid out depth first, each with the index just past its
 ///    subtree (`skip`), so a query is one forward sweep without a stack, and
-///    hold only what a query reads: the box, the lens F(P) (an index into
-///    `lenses`; none for a union flintstone or where it is never used) and
-///    the triangles that answer for the node: its face for a leaf, the fan
-///    over its boundary for an inner node with a short boundary (Lemma 6.1),
-///    coordinates copied in so a crossing test reads one record.
+///    hold only what the sweep reads on every visit: the box, rounded
+///    outwards to float (32 bytes a node: two per cache line), the skip and
+///    the first of the node's triangles. Its triangles are its face for a
+///    leaf, the fan over its boundary for an inner node with a short
+///    boundary (Lemma 6.1), coordinates copied in so a crossing test reads
+///    one record; an inner node's triangles end where its first child's
+///    begin. The lens F(P) (an index into `lenses`; none for a union
+///    flintstone or where it is never used) is kept beside the nodes.
 ///  - Chains are collapsed: an inner node whose box is nearly its parent's
 ///    prunes little, so its children are attached to the parent instead
 ///    (the parent's volume still holds them; only a chance to use the
 ///    node's fan is lost).
 struct FlintstoneInclusion3 {
   struct Node {
-    /// The box that holds the node's faces and its fan, as min, −max: an
+    /// The box that holds the node's faces and its fan, as min, −max, each
+    /// rounded down to a float (so the float box holds the exact one): an
     /// axis-aligned segment misses it when any of these exceeds the
-    /// segment's max, −min (at most six comparisons, exact).
-    std::array<double, 6> bounds{};
-    int skip = 0;                          ///< the next node after this one's subtree
-    int first_triangle = 0, triangle_count = 0;  ///< a leaf's face, or the fan (none: always refined)
-    int lens = -1;                         ///< F(P) = lenses[lens].first ∩ .second; -1: the box only
+    /// segment's max, −min rounded up (at most six comparisons, exact).
+    std::array<float, 6> bounds{};
+    int skip = 0;            ///< the next node after this one's subtree
+    int first_triangle = 0;  ///< a leaf's face, or the fan (an inner node without one: always refined)
 
     bool leaf(int self) const { return skip == self + 1; }
     Eigen::AlignedBox3d box() const {
@@ -78,12 +81,23 @@ struct FlintstoneInclusion3 {
     double first_radius = 0.0, second_radius = 0.0;
   };
   std::vector<Node> nodes;  ///< nodes[0] is the root (the whole mesh)
+  /// lens_of[k] of a node the packing added above many children: a box
+  /// only, no flintstone.
+  static constexpr int sorting_node = -2;
+  std::vector<int> lens_of;  ///< per node: F(P) = lenses[k].first ∩ .second; -1: the box only
   std::vector<Lens> lenses;
   std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+  Eigen::AlignedBox3d box;  ///< the root's exact box (the first ray's length)
   SignedBall<3> root_ball;  ///< the root flintstone
   Eigen::MatrixX3d vertices;  ///< the mesh, for the last-resort brute force
   Eigen::MatrixX3i faces;
 
+  /// Triangles of node k: one for a leaf, the fan (maybe none) for an inner node.
+  int triangle_count(int k) const {
+    return nodes[static_cast<std::size_t>(k)].leaf(k)
+               ? 1
+               : nodes[static_cast<std::size_t>(k) + 1].first_triangle - nodes[static_cast<std::size_t>(k)].first_triangle;
+  }
   std::size_t storage_bytes() const;
 };
 

@@ -112,7 +112,8 @@ void expect_inclusion_matches_brute_force(const FlintstoneTree3& tree, const Tri
   EXPECT_EQ(index_disagreements, 0) << what << ": packed index";
   EXPECT_GT(stats.replacements, 0u) << what << ": Lemma 6.1 never used";
   EXPECT_GT(index_stats.replacements, 0u) << what << ": Lemma 6.1 never used by the packed index";
-  // The packed index visits fewer flintstones than the tree (chains collapsed).
+  // The packed index tests fewer flintstones than the tree (chains collapsed,
+  // and only where a fan could replace the node's faces).
   EXPECT_LT(index_stats.flintstone_tests, stats.flintstone_tests) << what;
   if (mesh.face_count() >= 1000) {  // hierarchy pays: a small share of the brute-force tests
     EXPECT_LT(stats.crossing_tests, static_cast<std::size_t>(count * mesh.face_count()) / 20) << what;
@@ -163,8 +164,32 @@ TEST(FlintstoneInclusion3, PackedIndexAnswersAsTheTree) {
     const TriangleMesh mesh = io::read_mesh(test::cgal_data("meshes/" + name));
     const FlintstoneTree3 tree = flintstone_tree(mesh);
     const FlintstoneInclusion3 index = inclusion_index(tree);
-    ASSERT_TRUE(index.nodes.front().box().isApprox(tree.root().box, 0.0)) << name;
-    EXPECT_LE(index.nodes.size(), tree.nodes.size()) << name;
+    ASSERT_TRUE(index.box.isApprox(tree.root().box, 0.0)) << name;
+    EXPECT_TRUE(index.nodes.front().box().contains(index.box)) << name;
+    // Chains collapsed: fewer nodes than the tree, apart from the sorting
+    // nodes above many children, whose boxes hold their children's.
+    std::size_t sorting = 0, unheld = 0;
+    for (int k = 0; k < static_cast<int>(index.nodes.size()); ++k) {
+      if (index.lens_of[static_cast<std::size_t>(k)] != FlintstoneInclusion3::sorting_node) continue;
+      ++sorting;
+      const auto& node = index.nodes[static_cast<std::size_t>(k)];
+      EXPECT_EQ(index.triangle_count(k), 0) << name;  // no fan: always refined
+      for (int c = k + 1; c < node.skip; c = index.nodes[static_cast<std::size_t>(c)].skip)
+        unheld += !node.box().contains(index.nodes[static_cast<std::size_t>(c)].box());
+    }
+    EXPECT_EQ(unheld, 0u) << name;
+    EXPECT_LE(index.nodes.size() - sorting, tree.nodes.size()) << name;
+    // The float boxes, rounded outwards, hold their triangles exactly.
+    std::size_t loose = 0, fans = 0;
+    for (int k = 0; k < static_cast<int>(index.nodes.size()); ++k) {
+      const auto& node = index.nodes[static_cast<std::size_t>(k)];
+      const int count = index.triangle_count(k);
+      fans += !node.leaf(k) && count > 0;
+      for (int t = node.first_triangle; t < node.first_triangle + count; ++t)
+        for (const Eigen::Vector3d& corner : index.triangles[static_cast<std::size_t>(t)]) loose += !node.box().contains(corner);
+    }
+    EXPECT_EQ(loose, 0u) << name;
+    EXPECT_GT(fans, 0u) << name;
     EXPECT_GT(index.storage_bytes(), 0u) << name;
     int disagreements = 0, inside_count = 0;
     const std::vector<Eigen::Vector3d> queries = queries_near(mesh, 6000, 23);
