@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <tuple>
 #include <utility>
@@ -94,10 +95,60 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
   return out;
 }
 
+// Which flips need no exact test (see flip_boundary): the surface bounds a
+// union of Delaunay cells except inside the tetrahedra of the flips that
+// were not a cell's (foreign: their new triangles are no cell faces). A flip
+// whose tetrahedron is a cell whose box misses every foreign box adds or
+// removes that cell: its new triangles are faces of the Delaunay complex and
+// meet the other cell faces only in shared vertices and edges, no foreign
+// triangle comes near, and a Delaunay cell holds no point. The cells around
+// each point by counting sort (about 25 per point).
+class CellFlips {
+ public:
+  CellFlips(const DelaunayComplex<3>& dt, BoxGrid foreign)
+      : dt_(dt), start_(static_cast<std::size_t>(dt.points.rows()) + 1, 0), foreign_(std::move(foreign)) {
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) ++start_[static_cast<std::size_t>(dt.cells(c, i)) + 1];
+    for (std::size_t v = 1; v < start_.size(); ++v) start_[v] += start_[v - 1];
+    around_.resize(start_.back());
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) around_[fill[static_cast<std::size_t>(dt.cells(c, i))]++] = static_cast<int>(c);
+  }
+  /// Flipping (a, b) to (c, d) adds or removes a cell far from foreign flips.
+  bool toggles(int a, int b, int c, int d) const {
+    if (!is_cell(a, b, c, d)) return false;
+    Eigen::AlignedBox3d box;
+    for (const int v : {a, b, c, d}) box.extend(dt_.points.row(v).transpose());
+    return foreign_.visit(box, [](int) { return false; });
+  }
+  void add_foreign(const Eigen::AlignedBox3d& box) { foreign_.insert(foreign_count_++, box); }
+
+ private:
+  bool is_cell(int a, int b, int c, int d) const {
+    for (std::size_t k = start_[static_cast<std::size_t>(a)]; k < start_[static_cast<std::size_t>(a) + 1]; ++k) {
+      int found = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int v = dt_.cells(around_[k], i);
+        found += v == b || v == c || v == d;
+      }
+      if (found == 3) return true;
+    }
+    return false;
+  }
+  const DelaunayComplex<3>& dt_;
+  std::vector<std::size_t> start_;
+  std::vector<int> around_;
+  BoxGrid foreign_;
+  int foreign_count_ = 0;
+};
+
 // Flips by one criterion, largest gain first (area: caps over concavities go
 // before the small corrections around them), each under the exact tests.
+// cells: given when the surface came as the boundary of a union of Delaunay
+// cells (see flip_boundary).
 std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int, int>>& first, FlipCriterion criterion,
-                      const std::vector<Triangle>& fixed, double min_gain) {
+                      const std::vector<Triangle>& fixed, double min_gain, CellFlips* cells) {
   const auto is_fixed = [&](int f) {
     Triangle t = surface.face(f);
     std::sort(t.begin(), t.end());
@@ -127,10 +178,13 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
     const auto [f2, d] = face_with(surface, b, a);
     if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
     if (!(gain_of(a, b) > 0)) continue;
-    if (CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), surface.exact(d)) == CGAL::COPLANAR)
-      continue;
     const Triangle g1{a, d, c}, g2{d, b, c};
-    if (surface.point_in_tetrahedron(a, b, c, d) || surface.meets_surface({g1, g2}, {f1, f2})) continue;
+    if (!cells || !cells->toggles(a, b, c, d)) {
+      if (CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), surface.exact(d)) == CGAL::COPLANAR)
+        continue;
+      if (surface.point_in_tetrahedron(a, b, c, d) || surface.meets_surface({g1, g2}, {f1, f2})) continue;
+      if (cells) cells->add_foreign(surface.box({a, b, c, d}));
+    }
     surface.remove_face(f1);
     surface.remove_face(f2);
     surface.add_face(g1);
@@ -147,7 +201,7 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
 }  // namespace
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
-                          const Eigen::MatrixXi& keep, double min_gain) {
+                          const Eigen::MatrixXi& keep, double min_gain, const DelaunayComplex<3>* cells) {
   const bool delaunay = criterion == FlipCriterion::area_then_delaunay;
   const std::vector<std::pair<int, int>> by_area = candidate_edges(points, boundary, FlipCriterion::area, min_gain);
   if (by_area.empty() && (!delaunay || candidate_edges(points, boundary, criterion, min_gain).empty())) return 0;
@@ -159,11 +213,14 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     fixed.push_back(t);
   }
   std::sort(fixed.begin(), fixed.end());
-  std::size_t flips = flip_pass(surface, by_area, FlipCriterion::area, fixed, min_gain);
+  std::optional<CellFlips> cell_flips;
+  if (cells) cell_flips.emplace(*cells, surface_grid(points));
+  CellFlips* untested = cell_flips ? &*cell_flips : nullptr;
+  std::size_t flips = flip_pass(surface, by_area, FlipCriterion::area, fixed, min_gain, untested);
   if (delaunay) {
     // The Delaunay candidates of the surface the area flips left.
     const Eigen::MatrixX3i after = surface.boundary();
-    flips += flip_pass(surface, candidate_edges(points, after, criterion, min_gain), criterion, fixed, min_gain);
+    flips += flip_pass(surface, candidate_edges(points, after, criterion, min_gain), criterion, fixed, min_gain, untested);
   }
   boundary = surface.boundary();
   return flips;

@@ -19,6 +19,8 @@ double cell_size(const Eigen::MatrixX3d& P) {
 }
 }  // namespace
 
+BoxGrid surface_grid(const Eigen::MatrixX3d& P) { return BoxGrid(bounds(P), cell_size(P)); }
+
 PointTree::PointTree(const Eigen::MatrixX3d& P) {
   order_.resize(static_cast<std::size_t>(P.rows()));
   for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
@@ -52,7 +54,7 @@ void PointTree::build(int node, int begin, int end) {
 BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary)
     : P_(P),
       points_(P),
-      faces_grid_(bounds(P), cell_size(P)),
+      faces_grid_(surface_grid(P)),
       faces_at_(static_cast<std::size_t>(P.rows())),
       on_boundary_(static_cast<std::size_t>(P.rows()), 0) {
   cgal_.reserve(static_cast<std::size_t>(P.rows()));

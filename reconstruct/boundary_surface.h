@@ -138,6 +138,10 @@ class BoxGrid {
   std::vector<Cells> levels_;
 };
 
+/// An empty grid over the bounding box of P, about two points per cell on a
+/// surface-like cloud (the one BoundarySurface files its faces in).
+BoxGrid surface_grid(const Eigen::MatrixX3d& P);
+
 // A static k-d tree over points, for "which points lie in this box": the
 // points never move while a surface is edited, and on non-uniform samplings
 // (dense scans next to wide gaps) a query box of a long triangle or a wide

@@ -178,6 +178,38 @@ TEST(Constriction3, DelaunayFlipsKeepTheGuaranteesAndRecoverDelaunayMeshes) {
   }
 }
 
+// A flip that adds a Delaunay cell to the solid constriction left, or takes
+// one away, skips the exact tests (it cannot fail them): with the cells given
+// the flips are the same, one by one, as with every flip tested — on real
+// meshes (area flips, and Delaunay flips after them) and on a random sample
+// of an ellipsoid, where nearly every Delaunay flip is a cell's.
+TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
+  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
+  for (const std::string name : {"cactus", "triceratops", "ellipe0.003", "hand"})
+    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
+  sim::Random random(5);
+  Eigen::MatrixX3d ellipsoid(3000, 3);
+  for (Eigen::Index i = 0; i < ellipsoid.rows(); ++i) {
+    const Eigen::Vector3d p(random.normal(), random.normal(), random.normal());
+    ellipsoid.row(i) = (p.normalized().array() * Eigen::Array3d(3, 2, 1)).matrix().transpose();
+  }
+  inputs.emplace_back("ellipsoid", ellipsoid);
+  for (const auto& [name, P] : inputs) {
+    const DelaunayComplex<3> dt = delaunay_complex(P);
+    const Constriction<3> c = constrict(dt, constriction_options(surface_defaults()));
+    ASSERT_TRUE(c.all_on_boundary) << name;
+    for (const FlipCriterion criterion : {FlipCriterion::area, FlipCriterion::area_then_delaunay}) {
+      Eigen::MatrixX3i tested = c.boundary, fast = c.boundary;
+      const std::size_t flips = flip_boundary(dt.points, tested, criterion, Eigen::MatrixXi(0, 3));
+      EXPECT_EQ(flip_boundary(dt.points, fast, criterion, Eigen::MatrixXi(0, 3), 1e-3, &dt), flips) << name;
+      EXPECT_EQ(fast, tested) << name;
+      if (criterion == FlipCriterion::area_then_delaunay) {
+        EXPECT_GT(flips, 0u) << name;
+      }
+    }
+  }
+}
+
 // Scans are noisy: with Gaussian noise of 0.1% of the bounding-box diagonal
 // the guarantees must hold all the same.
 TEST(Constriction3, NoisyRealMeshesKeepTheGuarantees) {
