@@ -131,6 +131,14 @@ TEST(StereoCalibrationCli, StereoOptionsBelongToStereo) {
   const Outcome r = scanstation("scan --rig turntable --block-size 7 -o " + (dir / "t").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--block-size: a stereo option"));
+  // The station description's calibration file is the stereo scan's default.
+  std::ofstream(dir / "station.toml") << "calibration = \"gone.json\"\n[camera]\nbackend = \"sim\"\n"
+                                      << "[right_camera]\nbackend = \"sim\"\n";
+  const Outcome gone = scanstation("scan --rig stereo --station " + (dir / "station.toml").string() + " -o " +
+                                   (dir / "s").string());
+  EXPECT_EQ(gone.exit_code, 1);
+  EXPECT_THAT(gone.err, testing::HasSubstr("gone.json does not exist (named by the station description"));
+  EXPECT_THAT(gone.err, testing::HasSubstr("calibrate stereo"));
   const Outcome odd = scanstation("replay " + (dir / "t").string() + " --num-disparities 40");
   EXPECT_NE(odd.exit_code, 0);
   EXPECT_THAT(odd.err, testing::HasSubstr("a multiple of 16"));
