@@ -99,6 +99,11 @@ TEST(CalibrateCli, OrderAndInputsAreCheckedWithClearMessages) {
   r = scanstation("calibrate camera --board 9 " + kOpenCvData + "left01.jpg -o " + file);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--board 9: expected COLUMNSxROWS"));
+  // Placing a stereo pair on the turntable from images needs the platter's height and the angles.
+  r = scanstation("calibrate stereo --left " + kOpenCvData + "left01.jpg --right " + kOpenCvData +
+                  "right01.jpg --turntable " + kOpenCvData + "left02.jpg --step 10 -o " + file);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("stereo --turntable: --lowest-corner-height is needed"));
   r = scanstation("calibrate camera " + kOpenCvData + "aloeL.jpg -o " + file);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("aloeL.jpg"));
