@@ -5,7 +5,8 @@
 
 namespace scanstation::acquisition {
 
-Eigen::Index remove_isolated_points(LaserScanPoints& points, double radius, int min_neighbours) {
+Eigen::Index remove_isolated_points(LaserScanPoints& points, double radius, int min_neighbours,
+                                    std::vector<Eigen::Index>* kept_out) {
   if (!(radius > 0)) throw InvalidInput("outlier removal: the radius must be positive");
   PointCloud& cloud = points.cloud;
   std::vector<Eigen::Index> kept;
@@ -15,6 +16,7 @@ Eigen::Index remove_isolated_points(LaserScanPoints& points, double radius, int 
       if (static_cast<int>(grid.within(cloud.positions.row(i)).size()) - 1 >= min_neighbours) kept.push_back(i);
   }
   const Eigen::Index removed = cloud.size() - static_cast<Eigen::Index>(kept.size());
+  if (kept_out) *kept_out = kept;
   if (removed == 0) return 0;
   cloud.positions = cloud.positions(kept, Eigen::all).eval();
   if (cloud.has_colors()) cloud.colors = cloud.colors(kept, Eigen::all).eval();

@@ -8,7 +8,10 @@ namespace scanstation::acquisition {
 
 /// Keeps the points with at least `min_neighbours` others within `radius`,
 /// with their colours and confidences, in their order. Returns how many
-/// were removed. Throws InvalidInput for a radius ≤ 0.
-Eigen::Index remove_isolated_points(LaserScanPoints& points, double radius, int min_neighbours);
+/// were removed; `kept`, if given, receives the former index of every point
+/// kept (what the lines of sight of a scan need to follow its points).
+/// Throws InvalidInput for a radius ≤ 0.
+Eigen::Index remove_isolated_points(LaserScanPoints& points, double radius, int min_neighbours,
+                                    std::vector<Eigen::Index>* kept = nullptr);
 
 }  // namespace scanstation::acquisition

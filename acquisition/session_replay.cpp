@@ -146,8 +146,11 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   const double outlier_radius = stereo ? result.stereo_parameters.outlier_radius : result.parameters.outlier_radius;
   const int outlier_neighbours =
       stereo ? result.stereo_parameters.outlier_neighbours : result.parameters.outlier_neighbours;
-  if (outlier_radius > 0)
-    result.outliers_removed = remove_isolated_points(result.points, outlier_radius, outlier_neighbours);
+  if (outlier_radius > 0) {
+    result.outliers_removed =
+        remove_isolated_points(result.points, outlier_radius, outlier_neighbours, &result.fed_index);
+    if (result.outliers_removed == 0) result.fed_index.clear();
+  }
   result.points.cloud.positions = own_coordinates(result.points.cloud.positions, manifest.object.placement);
   result.process_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -41,6 +41,8 @@ struct ReplayOptions {
 ///                   that could not be used, each naming its file
 /// laser_agreement   with two lasers: the distance between their clouds
 ///                   (check_laser_agreement over the planned steps per turn)
+/// fed_index         with outliers removed: for every point, its index among
+///                   the points processed (on_step order); else empty
 /// geometry          the geometry the points were triangulated with: the
 ///                   recorded one (recorded_geometry) or ReplayOptions::geometry
 /// capture_seconds   the recorded steps' own duration (move start to last frame)
@@ -50,6 +52,7 @@ struct ScanResult {
   std::vector<LaserScanPoints> by_laser;
   int steps_used = 0;
   Eigen::Index outliers_removed = 0;
+  std::vector<Eigen::Index> fed_index;
   LaserScanParameters parameters;
   StereoScanParameters stereo_parameters;
   TurntableGeometry geometry;

@@ -161,7 +161,9 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
   Delaunay3 dt;
   insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(
       dt, input, [](int, Delaunay3::Vertex_handle) {});
-  if (dt.dimension() < 3) throw InvalidInput("all points lie in one plane: no polyhedron encloses them");
+  if (dt.dimension() < 3)
+    throw InvalidInput(std::string("all points lie ") + (dt.dimension() < 2 ? "on one line" : "in one plane") +
+                       ": no polyhedron encloses them");
 
   DelaunayComplex<3> out;
   out.points = P;

@@ -54,7 +54,7 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   result.normals_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  const ThreeSplitOptions three_split_options{options.least_squares_ratio, options.tension};
+  const ThreeSplitOptions three_split_options{options.least_squares_ratio, options.tension, options.max_move};
   switch (options.scheme) {
     case SplitScheme::six_split: result.surface = six_split(V, mesh.faces, N, edges, options.tension, options.max_move);
       break;
@@ -93,8 +93,7 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
               {"samples", s.g1.samples},
               {"unmatched_edges", s.g1.unmatched_edges}}},
       {"oscillation", {{"max_relative", s.oscillation.max_relative}, {"mean_relative", s.oscillation.mean_relative}}}};
-  if (options.scheme == SplitScheme::six_split && std::isfinite(options.max_move))
-    report["max_move"] = options.max_move;
+  if (std::isfinite(options.max_move)) report["max_move"] = options.max_move;
   if (options.scheme != SplitScheme::six_split)
     report["ratio"] = options.least_squares_ratio ? "least-squares" : "one";
   if (options.scheme == SplitScheme::adaptive_two_split) {

@@ -28,7 +28,7 @@ std::string scheme_name(SplitScheme scheme);
 /// tension       the Step-2 constant (1/3 in the thesis)
 /// least_squares_ratio  three-/two-split Step 5: the free ratio by least squares
 /// min_angle     adaptive two-split: triangles with a smaller angle (degrees)
-/// max_move      six-split Step 5: the largest move of a control point, in
+/// max_move      Step 5 of every split: the largest move of a control point, in
 ///               macro edge lengths, beyond which an edge is joined
 ///               approximately rather than bulge (∞: exact, as the thesis)
 struct SurfaceSmoothingOptions {

@@ -1,5 +1,6 @@
 #include "smoothing/three_split.h"
 
+#include "smoothing/damped_least_squares.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
@@ -47,7 +48,7 @@ void split_in_three(const CubicTriangle& macro, CubicTriangle* micro) {
 
 // Step 5 for one macro edge: the micro patch P on this side, Q on the other.
 // M_i is P's edge row, L_i P's next row; R_i Q's next row read in P's direction.
-bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio) {
+bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio, double max_move) {
   const Eigen::Vector3d M0 = P[control_index(3, 0, 0)], M1 = P[control_index(2, 1, 0)];
   const Eigen::Vector3d M2 = P[control_index(1, 2, 0)], M3 = P[control_index(0, 3, 0)];
   const Eigen::Vector3d L0 = P[W_first], L2 = P[W_second];
@@ -79,10 +80,16 @@ bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_square
   };
   const double lambda =
       least_squares_ratio && independent ? closest_ratio(solve(fixed), inverse * with_lambda, inverse * with_inverse) : 1.0;
-  const Eigen::Matrix<double, 2, 3> solution = old + solve(fixed + lambda * with_lambda + with_inverse / lambda);
+  const Eigen::Matrix<double, 2, 3> rhs = fixed + lambda * with_lambda + with_inverse / lambda;
+  Eigen::Matrix<double, 2, 3> solution = old + solve(rhs);
+  // Nearly dependent conditions can demand L1, R1 far off the surface (a
+  // bulge); within max_move edge lengths they are met as well as they can be.
+  const double reach = max_move * (M3 - M0).norm();
+  const bool bulges = (solution - old).rowwise().norm().maxCoeff() > reach;
+  if (bulges) solution = old + damped_step(A, rhs - A * old, reach);
   P[X] = M1 + solution.row(0).transpose();
   Q[X] = M1 + solution.row(1).transpose();
-  return independent;
+  return independent && !bulges;
 }
 
 // Step 6 inside one macro triangle.
@@ -113,7 +120,7 @@ BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, 
     for (int e = 0; e < 3; ++e) {
       const int g = edges.neighbour(f, e);
       if (f < g && !join_three_split_edge(surface.patches[3 * f + e], surface.patches[3 * g + edges.neighbour_edge(f, e)],
-                                    options.least_squares_ratio))
+                                          options.least_squares_ratio, options.max_move))
         ++surface.dependent_edges;
     }
   for (int f = 0; f < F.rows(); ++f) join_three_split_interior(&surface.patches[3 * f]);

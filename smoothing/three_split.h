@@ -7,6 +7,7 @@
 #include "smoothing/mesh_edges.h"
 
 #include <Eigen/Core>
+#include <limits>
 
 namespace scanstation {
 
@@ -16,9 +17,14 @@ namespace scanstation {
 ///   displacement of L1 and R1 from their subdivided positions, in the spirit
 ///   of the six-split's Step 5 (our addition; still exactly Equation 9.3).
 /// tension  the Step-2 constant (1/3 in the thesis), see macro_patches.
+/// max_move  where Equation (9.4) is nearly dependent its solution can move
+///   L1 or R1 farther than this many macro edge lengths (a bulge); the edge is
+///   then joined by a bounded damped least-squares step instead (not G¹
+///   there, counted in dependent_edges). ∞: always exact, as the thesis.
 struct ThreeSplitOptions {
   bool least_squares_ratio = false;
   double tension = 1.0 / 3.0;
+  double max_move = std::numeric_limits<double>::infinity();
 };
 
 /// V #V by 3, F #F by 3 (closed, oriented), N #V by 3 unit normals, edges =
@@ -37,8 +43,11 @@ BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, 
 void split_in_three(const CubicTriangle& macro, CubicTriangle* micro);
 /// Step 5 on the macro edge between micro triangles P (this side, edge b300 →
 /// b030) and Q (the other side): sets L1 = P's b111 and R1 = Q's b111 by
-/// Equation (9.4); false when (9.4) was dependent (closest solution taken).
-bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio);
+/// Equation (9.4); false when (9.4) was dependent (closest solution taken)
+/// or its solution moved a point more than max_move edge lengths (the bounded
+/// damped step taken, see ThreeSplitOptions).
+bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_squares_ratio,
+                           double max_move = std::numeric_limits<double>::infinity());
 /// Step 6 inside one macro triangle: Y_i and Z from W_i and X_i [Farin, 83].
 void join_three_split_interior(CubicTriangle* micro);
 

@@ -12,7 +12,6 @@
 
 #include <chrono>
 #include <numbers>
-#include <numeric>
 
 namespace scanstation::station {
 
@@ -56,17 +55,26 @@ struct StepViews {
     counts.push_back(n);
   }
 
-  // Lines of sight of the final points in their own coordinates, when they
-  // are the points fed in the same order (no outliers removed); else none.
+  // Lines of sight of the final points in their own coordinates: point i
+  // was fed as point fed_index[i] (all fed points when no outlier was
+  // removed). None when the counts do not add up.
   std::vector<SightLine> sight_lines(const acquisition::ScanResult& result, const acquisition::ObjectPlacement& placement) const {
+    std::vector<Eigen::Vector3d> fed_views;  // own_coordinates of each fed point's camera centre
+    for (std::size_t step = 0; step < centres.size(); ++step)
+      fed_views.insert(fed_views.end(), static_cast<std::size_t>(counts[step]),
+                       (centres[step] - placement.translation) / placement.scale);
+    const Eigen::Index fed = static_cast<Eigen::Index>(fed_views.size());
+    const Eigen::Index final_points = result.points.cloud.size();
+    const bool all_fed = result.fed_index.empty();
     std::vector<SightLine> lines;
-    const Eigen::Index total = std::accumulate(counts.begin(), counts.end(), Eigen::Index{0});
-    if (result.outliers_removed > 0 || total != result.points.cloud.size()) return lines;
-    lines.reserve(static_cast<std::size_t>(total));
-    int point = 0;
-    for (std::size_t step = 0; step < centres.size(); ++step) {
-      const Eigen::Vector3d view = (centres[step] - placement.translation) / placement.scale;  // own_coordinates
-      for (Eigen::Index k = 0; k < counts[step]; ++k) lines.push_back({point++, view});
+    if (all_fed ? fed != final_points
+                : static_cast<Eigen::Index>(result.fed_index.size()) != final_points ||
+                      fed != final_points + result.outliers_removed)
+      return lines;
+    lines.reserve(static_cast<std::size_t>(final_points));
+    for (Eigen::Index i = 0; i < final_points; ++i) {
+      const Eigen::Index source = all_fed ? i : result.fed_index[static_cast<std::size_t>(i)];
+      lines.push_back({static_cast<int>(i), fed_views[static_cast<std::size_t>(source)]});
     }
     return lines;
   }

@@ -38,8 +38,8 @@ struct SessionProcessing {
   LiveBoundaryOptions live;
   std::function<void(const LiveStep&)> on_live_step;
   /// The final boundary from scratch with the cells between each point and
-  /// the camera that saw it carved first (when the final points are the
-  /// points fed, i.e. no outliers removed); off: the live boundary.
+  /// the camera that saw it carved first (outliers removed or not: each
+  /// final point keeps its step's camera); off: the live boundary.
   bool lines_of_sight = true;
   SurfaceSmoothingOptions smoothing = station_smoothing();
   int density = 4;

@@ -56,7 +56,7 @@ class SmoothCommand final : public Command {
         ->check(CLI::Range(0.0, 60.0))
         ->capture_default_str();
     cli_->add_option("--max-move", max_move_,
-                     "six-split Step 5: join an edge approximately (not G¹ there, counted as dependent) where meeting "
+                     "Step 5 (every split scheme): join an edge approximately (not G¹ there, counted as dependent) where meeting "
                      "G¹ exactly would move a control point farther than this many macro edge lengths (a bulge); "
                      "default: always exact, as the thesis")
         ->check(CLI::PositiveNumber);

@@ -198,8 +198,14 @@ TEST(OutlierRemoval, StrayPointsGoSurfacePointsStay) {
     points.confidence.push_back(0.5);
   }
   points.cloud.colors.setConstant(9);
-  EXPECT_EQ(remove_isolated_points(points, 0.05, 3), stray);
+  const Eigen::MatrixX3d before = points.cloud.positions;
+  std::vector<Eigen::Index> kept;
+  EXPECT_EQ(remove_isolated_points(points, 0.05, 3, &kept), stray);
   EXPECT_EQ(points.cloud.size(), surface);
+  // `kept` maps every point left to the row it came from.
+  ASSERT_EQ(kept.size(), static_cast<std::size_t>(surface));
+  for (Eigen::Index i = 0; i < surface; ++i)
+    EXPECT_EQ(points.cloud.positions.row(i), before.row(kept[static_cast<std::size_t>(i)]));
   EXPECT_EQ(points.cloud.colors.rows(), surface);
   EXPECT_EQ(points.confidence.size(), static_cast<std::size_t>(surface));
   EXPECT_LT(points.cloud.positions.col(2).cwiseAbs().maxCoeff(), 0.01);

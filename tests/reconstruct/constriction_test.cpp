@@ -123,7 +123,10 @@ TEST(Constriction3, DegenerateInputs) {
   test::expect_error<InvalidInput>([&] { reconstruct_surface(three); }, {"at least 4"});
   Eigen::MatrixX3d flat(5, 3);
   flat << 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.3, 0;
-  test::expect_error<InvalidInput>([&] { reconstruct_surface(flat); }, {"plane"});
+  test::expect_error<InvalidInput>([&] { reconstruct_surface(flat); }, {"in one plane"});
+  Eigen::MatrixX3d line(4, 3);
+  line << 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3;
+  test::expect_error<InvalidInput>([&] { reconstruct_surface(line); }, {"on one line"});
   Eigen::MatrixX3d nan = Eigen::MatrixX3d::Random(6, 3);
   nan(2, 1) = std::nan("");
   test::expect_error<InvalidInput>([&] { reconstruct_surface(nan); }, {"NaN"});
