@@ -30,6 +30,27 @@ std::vector<CalibrationView> capture_board_views(TurntableScanDevices& devices, 
   return views;
 }
 
+std::vector<StereoCalibrationView> capture_stereo_board_views(StereoScanDevices& devices, int count,
+                                                              const PlaceBoard& place,
+                                                              const ProgressCallback& progress) {
+  if (count < 1) throw InvalidInput("calibration capture: at least one board placement");
+  const StreamingCamera left(devices.left), right(devices.right);
+  drivers::Timestamp dark = devices.clock.now();
+  if (devices.projector) dark = devices.projector->set(false);
+  std::vector<StereoCalibrationView> views;
+  for (int i = 0; i < count; ++i) {
+    place(i, count);
+    const drivers::Timestamp placed = std::max(dark, devices.clock.now());
+    StereoCalibrationView view;
+    view.left = grey8(grab_frame(devices.left, devices.clock, placed, devices.timeout).frame.image).clone();
+    view.right = grey8(grab_frame(devices.right, devices.clock, placed, devices.timeout).frame.image).clone();
+    view.angle_deg = devices.turntable.angle();
+    views.push_back(std::move(view));
+    if (progress) progress(double(i + 1) / count);
+  }
+  return views;
+}
+
 std::vector<CalibrationView> capture_turntable_views(TurntableScanDevices& devices,
                                                      const std::vector<double>& angles_deg, const PlaceBoard& place,
                                                      const ProgressCallback& progress) {

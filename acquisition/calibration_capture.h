@@ -9,6 +9,7 @@
 // table settled and the laser switched.
 #pragma once
 
+#include "acquisition/stereo_scan.h"
 #include "acquisition/turntable_scan.h"
 #include "core/progress.h"
 
@@ -37,6 +38,21 @@ struct CalibrationView {
 /// streams for the duration. Device errors propagate.
 std::vector<CalibrationView> capture_board_views(TurntableScanDevices& devices, int count, const PlaceBoard& place,
                                                  bool lasers, const ProgressCallback& progress = {});
+
+/// One placement of the board seen by both cameras of a stereo rig.
+/// left, right  8-bit grey frames (grey8) exposed after the placement
+struct StereoCalibrationView {
+  cv::Mat left, right;
+  double angle_deg = 0;
+};
+
+/// `count` placements of the board, the table still (stereo pair): for each,
+/// place(i, count), then a frame from each camera; the projector, if any,
+/// stays off (its dots would hide the board's corners). Both cameras stream
+/// for the duration. Device errors propagate.
+std::vector<StereoCalibrationView> capture_stereo_board_views(StereoScanDevices& devices, int count,
+                                                              const PlaceBoard& place,
+                                                              const ProgressCallback& progress = {});
 
 /// One placement of the board seen at the table angles `angles_deg`
 /// (absolute, Turntable::rotate_to; turntable axis): place(0, 1), then for

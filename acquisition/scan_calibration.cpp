@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <tuple>
 
 namespace scanstation::acquisition {
 
@@ -24,18 +25,25 @@ long long seconds_since_epoch(const std::string& iso_time, const std::string& fi
 }
 
 TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const StationFingerprint& station,
-                                      int laser_count, double max_age_days, const std::string& now) {
+                                      int laser_count, double max_age_days, const std::string& now,
+                                      CalibrationNeed need) {
+  const bool stereo = need == CalibrationNeed::stereo || need == CalibrationNeed::stereo_pose;
   check_calibration_matches(calibration, station);
-  check_calibration_complete(calibration, CalibrationNeed::lasers, laser_count);
+  check_calibration_complete(calibration, stereo ? CalibrationNeed::stereo_pose : CalibrationNeed::lasers, laser_count);
   const std::string file = calibration.source.empty() ? "the calibration" : calibration.source.string();
 
   // The parts used, with their dates: the oldest decides the age.
-  std::vector<std::pair<std::string, std::string>> parts{{"camera.date", calibration.camera->date}};
-  if (calibration.turntable) parts.emplace_back("turntable.date", calibration.turntable->date);
+  std::vector<std::pair<std::string, std::string>> parts;
   json laser_dates = json::array();
-  for (int l = 0; l < laser_count; ++l) {
-    parts.emplace_back("lasers[" + std::to_string(l) + "].date", calibration.laser(l)->date);
-    laser_dates.push_back(calibration.laser(l)->date);
+  if (stereo) {
+    parts = {{"stereo.date", calibration.stereo->date}, {"stereo.turntable.date", calibration.stereo->turntable->date}};
+  } else {
+    parts.emplace_back("camera.date", calibration.camera->date);
+    if (calibration.turntable) parts.emplace_back("turntable.date", calibration.turntable->date);
+    for (int l = 0; l < laser_count; ++l) {
+      parts.emplace_back("lasers[" + std::to_string(l) + "].date", calibration.laser(l)->date);
+      laser_dates.push_back(calibration.laser(l)->date);
+    }
   }
   const long long at = seconds_since_epoch(now, "the current time");
   double age_days = 0;
@@ -53,29 +61,37 @@ TurntableGeometry calibrated_geometry(const StationCalibration& calibration, con
                   age_days, max_age_days);
     const std::string part = oldest.substr(0, oldest.find_first_of(".["));  // "lasers[1].date": calibrate laser
     throw InvalidInput(file + text + ": recalibrate that part (`scanstation calibrate " +
-                       (part == "lasers" ? "laser" : part) +
-                       " --force`, with `calibrate laser` after a new camera or turntable), or accept it with "
-                       "--calibration-max-age DAYS (0: any age)");
+                       (part == "lasers" ? "laser" : part) + " --force`" +
+                       (stereo ? "" : ", with `calibrate laser` after a new camera or turntable") +
+                       "), or accept it with --calibration-max-age DAYS (0: any age)");
   }
 
   TurntableGeometry geometry;
-  geometry.camera = calibration.camera->camera;
-  for (int l = 0; l < laser_count; ++l) geometry.lasers.push_back(calibration.laser(l)->plane);
+  json dates;
+  if (stereo) {
+    std::tie(geometry.camera, geometry.right_camera) = stereo_cameras(*calibration.stereo);
+    dates = {{"stereo", calibration.stereo->date}, {"turntable", calibration.stereo->turntable->date}};
+  } else {
+    geometry.camera = calibration.camera->camera;
+    for (int l = 0; l < laser_count; ++l) geometry.lasers.push_back(calibration.laser(l)->plane);
+    dates = {{"camera", calibration.camera->date},
+             {"turntable", calibration.turntable ? json(calibration.turntable->date) : json(nullptr)},
+             {"lasers", laser_dates}};
+  }
   geometry.source = file;
-  geometry.calibration = {
-      {"file", file},
-      {"fingerprint", calibration.station.hash},
-      {"created", calibration.created},
-      {"updated", calibration.updated},
-      {"dates", {{"camera", calibration.camera->date},
-                 {"turntable", calibration.turntable ? json(calibration.turntable->date) : json(nullptr)},
-                 {"lasers", laser_dates}}},
-      {"age_days", std::round(age_days * 1000) / 1000}};
+  geometry.calibration = {{"file", file},
+                          {"fingerprint", calibration.station.hash},
+                          {"created", calibration.created},
+                          {"updated", calibration.updated},
+                          {"dates", dates},
+                          {"age_days", std::round(age_days * 1000) / 1000}};
   return geometry;
 }
 
 TurntableGeometry scan_geometry(const std::string& choice, const drivers::StationDescription& station,
-                                const std::optional<TurntableGeometry>& simulator_truth, double max_age_days) {
+                                const std::optional<TurntableGeometry>& simulator_truth, double max_age_days,
+                                CalibrationNeed need) {
+  const bool stereo = need == CalibrationNeed::stereo || need == CalibrationNeed::stereo_pose;
   const std::string file = choice.empty() ? station.calibration.string() : choice;
   if (file == kSimulatorTruth || (file.empty() && simulator_truth)) {
     if (!simulator_truth)
@@ -86,13 +102,15 @@ TurntableGeometry scan_geometry(const std::string& choice, const drivers::Statio
   if (file.empty())
     throw InvalidInput("scan: the station's devices are real and no calibration is given: name the calibration file "
                        "with --calibration FILE or `calibration = \"FILE\"` in the station description (make one "
-                       "with `scanstation calibrate camera`, then `turntable`, then `laser`)");
+                       "with " + std::string(stereo ? "`scanstation calibrate stereo`" :
+                                             "`scanstation calibrate camera`, then `turntable`, then `laser`") + ")");
   if (!std::filesystem::exists(file))
     throw InvalidInput("calibration file " + file + " does not exist" +
                        (choice.empty() ? " (named by the station description " + station.source.string() + ")" : "") +
-                       ": make it with `scanstation calibrate camera|turntable|laser -o " + file + "`");
+                       ": make it with `scanstation calibrate " + (stereo ? "stereo" : "camera|turntable|laser") +
+                       " -o " + file + "`");
   return calibrated_geometry(read_station_calibration(file), station_fingerprint(station),
-                             static_cast<int>(station.lasers.size()), max_age_days, calibration_date());
+                             static_cast<int>(station.lasers.size()), max_age_days, calibration_date(), need);
 }
 
 TurntableGeometry replay_geometry(const std::filesystem::path& file, const SessionContents& session,
@@ -112,7 +130,8 @@ TurntableGeometry replay_geometry(const std::filesystem::path& file, const Sessi
   fingerprint.devices = (*recorded)["devices"];
   try {
     return calibrated_geometry(read_station_calibration(file), fingerprint,
-                               static_cast<int>(fingerprint.devices["lasers"].size()), max_age_days, calibration_date());
+                               static_cast<int>(fingerprint.devices["lasers"].size()), max_age_days, calibration_date(),
+                               session.manifest.rig == "stereo" ? CalibrationNeed::stereo_pose : CalibrationNeed::lasers);
   } catch (const InvalidInput& e) {
     throw InvalidInput(replay + e.what());
   }

@@ -34,15 +34,18 @@ inline constexpr double kCalibrationMaxAgeDays = 30.0;
 long long seconds_since_epoch(const std::string& iso_time, const std::string& field);
 
 /// The checked geometry of `calibration` for a scan on devices of
-/// fingerprint `station` with `laser_count` lasers:
+/// fingerprint `station` with `laser_count` lasers (need lasers: the camera
+/// and the light planes), or with its stereo pair (need stereo_pose: both
+/// cameras placed on the turntable, no laser):
 /// source = the calibration file, calibration = {"file", "fingerprint",
-/// "created", "updated", "dates": {"camera", "turntable", "lasers": [...]},
-/// "age_days"} (age of the oldest part at `now`).
+/// "created", "updated", "dates": {"camera", "turntable", "lasers": [...]}
+/// (stereo: {"stereo", "turntable"}), "age_days"} (age of the oldest part at `now`).
 /// max_age_days  0 accepts any age
 /// now           ISO 8601 UTC time to age the parts against (calibration_date())
 /// Throws InvalidInput naming the file, the field and the command that fixes it.
 TurntableGeometry calibrated_geometry(const StationCalibration& calibration, const StationFingerprint& station,
-                                      int laser_count, double max_age_days, const std::string& now);
+                                      int laser_count, double max_age_days, const std::string& now,
+                                      CalibrationNeed need = CalibrationNeed::lasers);
 
 /// Which geometry a scan uses.
 /// choice           a calibration file, kSimulatorTruth, or "" for the
@@ -51,14 +54,17 @@ TurntableGeometry calibrated_geometry(const StationCalibration& calibration, con
 ///                  when simulating, else an error
 /// simulator_truth  the simulated rig's geometry; absent on real devices
 ///                  (where kSimulatorTruth is refused)
+/// need             lasers (laser rig) or stereo_pose (stereo rig)
 TurntableGeometry scan_geometry(const std::string& choice, const drivers::StationDescription& station,
                                 const std::optional<TurntableGeometry>& simulator_truth,
-                                double max_age_days = kCalibrationMaxAgeDays);
+                                double max_age_days = kCalibrationMaxAgeDays,
+                                CalibrationNeed need = CalibrationNeed::lasers);
 
 /// The geometry to reprocess a recorded session with instead of the one it
 /// recorded: the calibration `file`, checked as a scan checks it
 /// (calibrated_geometry, aged against the current time) against the devices
-/// the session was scanned with (its manifest's station fingerprint).
+/// the session was scanned with (its manifest's station fingerprint); a
+/// stereo session needs the stereo pair placed on the turntable.
 /// Throws InvalidInput naming the session and the file: a missing file, a
 /// session that records no fingerprint, other devices, an incomplete or a
 /// stale calibration.

@@ -97,10 +97,14 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   if (stereo && options.parameters)
     throw InvalidInput((session.folder / "manifest.json").string() +
                        ": a stereo session: the laser processing parameters do not apply to it (it is replayed "
-                       "with its recorded stereo parameters)");
+                       "with the stereo options: --block-size, --num-disparities, --uniqueness, --pixel-step)");
+  if (!stereo && options.stereo_parameters)
+    throw InvalidInput((session.folder / "manifest.json").string() + ": a " + manifest.rig +
+                       " session: the stereo options do not apply to it (it takes the laser processing options)");
   ScanResult result;
   result.problems = session.problems;
   result.parameters = options.parameters.value_or(manifest.parameters);
+  result.stereo_parameters = options.stereo_parameters.value_or(manifest.stereo_parameters);
   result.geometry = options.geometry.value_or(manifest.geometry);
   result.recorded_geometry = !options.geometry;
   const TurntableGeometry& geometry = result.geometry;
@@ -110,7 +114,7 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
     for (std::size_t i = 0; i < geometry.lasers.size(); ++i) lasers.push_back(static_cast<int>(i));
   }
   std::optional<StereoScanSetup> stereo_setup;
-  if (stereo) stereo_setup = stereo_scan_setup(geometry, manifest.stereo_parameters);
+  if (stereo) stereo_setup = stereo_scan_setup(geometry, result.stereo_parameters);
   result.by_laser.resize(stereo ? 1 : geometry.lasers.size());
   for (std::size_t s = 0; s < session.steps.size(); ++s) {
     const SessionStep& step = session.steps[s];
@@ -139,9 +143,9 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   if (result.by_laser.size() == 2)
     result.laser_agreement = check_laser_agreement(result.by_laser[0].cloud.positions,
                                                    result.by_laser[1].cloud.positions, manifest.steps);
-  const double outlier_radius = stereo ? manifest.stereo_parameters.outlier_radius : result.parameters.outlier_radius;
+  const double outlier_radius = stereo ? result.stereo_parameters.outlier_radius : result.parameters.outlier_radius;
   const int outlier_neighbours =
-      stereo ? manifest.stereo_parameters.outlier_neighbours : result.parameters.outlier_neighbours;
+      stereo ? result.stereo_parameters.outlier_neighbours : result.parameters.outlier_neighbours;
   if (outlier_radius > 0) {
     result.outliers_removed =
         remove_isolated_points(result.points, outlier_radius, outlier_neighbours, &result.fed_index);
@@ -181,7 +185,7 @@ json write_scan_results(const fs::path& folder, const SessionContents& session, 
       {"points", result.points.cloud.size()},
       {"points_per_laser", per_laser},
       {"outliers_removed", result.outliers_removed},
-      {"parameters", m.rig == "stereo" ? to_json(m.stereo_parameters) : to_json(result.parameters)},
+      {"parameters", m.rig == "stereo" ? to_json(result.stereo_parameters) : to_json(result.parameters)},
       {"problems", result.problems},
       {"laser_agreement", result.laser_agreement ? to_json(*result.laser_agreement) : json(nullptr)},
       {"seconds", {{"capture", result.capture_seconds}, {"processing", result.process_seconds}}},

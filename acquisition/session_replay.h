@@ -6,6 +6,7 @@
 
 #include "acquisition/laser_agreement.h"
 #include "acquisition/session.h"
+#include "acquisition/stereo_scan_parameters.h"
 #include "acquisition/turntable_step_points.h"
 #include "core/progress.h"
 
@@ -14,7 +15,8 @@
 
 namespace scanstation::acquisition {
 
-/// parameters  replaces the recorded processing parameters
+/// parameters  replaces the recorded processing parameters (laser session)
+/// stereo_parameters  replaces them for a stereo session
 /// geometry    replaces the recorded geometry (another calibration, on purpose)
 /// on_step     called after each recorded step with its index, angle, its
 ///             points (one cloud per laser, platter object frame; empty when
@@ -23,6 +25,7 @@ namespace scanstation::acquisition {
 ///             batch by batch, as the scan does
 struct ReplayOptions {
   std::optional<LaserScanParameters> parameters;
+  std::optional<StereoScanParameters> stereo_parameters;
   std::optional<TurntableGeometry> geometry;
   ProgressCallback progress;
   std::function<void(int step, double angle_deg, const std::vector<LaserScanPoints>& step_points,
@@ -51,6 +54,7 @@ struct ScanResult {
   Eigen::Index outliers_removed = 0;
   std::vector<Eigen::Index> fed_index;
   LaserScanParameters parameters;
+  StereoScanParameters stereo_parameters;
   TurntableGeometry geometry;
   bool recorded_geometry = true;
   std::vector<std::string> problems;

@@ -159,8 +159,11 @@ LaserPart laser_part(const Fields& f) {
 json stereo_json(const StereoPart& part) {
   json per_view = json::array();
   for (const auto& v : part.per_view_rms) per_view.push_back({v[0], v[1]});
-  return {{"date", part.date}, {"pairs", part.pairs}, {"left", to_json(part.left)}, {"right", to_json(part.right)},
-          {"residuals", {{"rms_px", part.rms}, {"per_view_rms_px", per_view}}}};
+  json out = {{"date", part.date}, {"pairs", part.pairs}, {"left", to_json(part.left)}, {"right", to_json(part.right)},
+              {"pose", part.turntable ? "station" : "camera"},
+              {"residuals", {{"rms_px", part.rms}, {"per_view_rms_px", per_view}}}};
+  if (part.turntable) out["turntable"] = turntable_json(*part.turntable);
+  return out;
 }
 
 StereoPart stereo_part(const Fields& f) {
@@ -178,6 +181,12 @@ StereoPart stereo_part(const Fields& f) {
       throw InvalidInput(residuals.name("per_view_rms_px") + ": expected [[left, right], ...]");
     part.per_view_rms.push_back({pair[0].get<double>(), pair[1].get<double>()});
   }
+  // Files written before the pair could be placed on the turntable have no "pose".
+  const std::string pose = f.has("pose") ? f.text("pose") : "camera";
+  if (pose != "station" && pose != "camera") throw InvalidInput(f.name("pose") + ": expected \"station\" or \"camera\"");
+  if ((pose == "station") != f.has("turntable"))
+    throw InvalidInput(f.name("pose") + ": \"station\" goes with a \"turntable\" part, \"camera\" without one");
+  if (f.has("turntable")) part.turntable = turntable_part(f.object("turntable"));
   return part;
 }
 
@@ -218,6 +227,14 @@ StationFingerprint station_fingerprint(const drivers::StationDescription& statio
     if (laser.backend == "usb") role["output"] = laser.usb_index;
     usb = usb || laser.backend == "usb";
     devices["lasers"].push_back(role);
+  }
+  // A stereo rig's second camera; absent for a laser rig, whose fingerprint stays as it was.
+  if (station.right_camera) {
+    const drivers::CameraRole& right = *station.right_camera;
+    devices["right_camera"] = {{"backend", right.backend},
+                               {"device", right.backend == "v4l2" ? right.device : "simulated"},
+                               {"format", drivers::pixel_format_name(right.format.format)},
+                               {"width", right.format.size.width}, {"height", right.format.size.height}};
   }
   devices["turntable"] = {{"backend", station.turntable.backend},
                           {"steps_per_rev", station.turntable.stepper.steps_per_rev()}};
@@ -323,8 +340,12 @@ void check_calibration_matches(const StationCalibration& calibration, const Stat
 
 void check_calibration_complete(const StationCalibration& c, CalibrationNeed need, int laser_count) {
   const std::string file = c.source.empty() ? "the calibration" : c.source.string();
-  if (need == CalibrationNeed::stereo) {
+  if (need == CalibrationNeed::stereo || need == CalibrationNeed::stereo_pose) {
     if (!c.stereo) throw InvalidInput(file + " has no stereo calibration: run `scanstation calibrate stereo`");
+    if (need == CalibrationNeed::stereo_pose && !c.stereo->turntable)
+      throw InvalidInput(file + " does not place the stereo pair on the turntable: run `scanstation calibrate stereo "
+                         "--force` with the board on the platter at several angles (--turntable IMAGES "
+                         "--angles|--step --lowest-corner-height, or --backend sim)");
     return;
   }
   if (!c.camera) throw InvalidInput(file + " has no camera calibration: run `scanstation calibrate camera`");
@@ -370,6 +391,34 @@ void set_laser(StationCalibration& c, LaserPart laser) {
     }
   c.lasers.push_back(std::move(laser));
   std::sort(c.lasers.begin(), c.lasers.end(), [](const LaserPart& a, const LaserPart& b) { return a.index < b.index; });
+}
+
+void set_stereo(StationCalibration& c, StereoPart stereo, std::optional<TurntablePart> turntable) {
+  stereo.left.rotation.setIdentity();
+  stereo.left.translation.setZero();
+  stereo.turntable.reset();
+  if (turntable) {
+    TurntableAxis axis;
+    axis.direction = turntable->axis_camera;
+    axis.origin = turntable->origin_camera;
+    PinholeCamera left = place_camera(stereo.left, axis);  // y from the left camera towards the axis
+    // Turn the frame about the axis so that y runs from the middle between
+    // the cameras instead: x_new = Rz(α) x_old puts that middle on −y.
+    const Eigen::Vector3d right_centre = -stereo.right.rotation.transpose() * stereo.right.translation;  // left frame
+    const Eigen::Vector3d middle = left.rotation.transpose() * (0.5 * right_centre - left.translation);
+    const double alpha = -0.5 * std::numbers::pi - std::atan2(middle.y(), middle.x());
+    left.rotation = left.rotation * turntable_rotation(alpha).transpose();
+    stereo.left = left;
+    stereo.turntable = std::move(turntable);
+  }
+  c.stereo = std::move(stereo);
+}
+
+std::pair<PinholeCamera, PinholeCamera> stereo_cameras(const StereoPart& stereo) {
+  PinholeCamera right = stereo.right;
+  right.rotation = stereo.right.rotation * stereo.left.rotation;
+  right.translation = stereo.right.rotation * stereo.left.translation + stereo.right.translation;
+  return {stereo.left, right};
 }
 
 std::string calibration_date() {

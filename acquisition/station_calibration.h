@@ -16,7 +16,9 @@
 //    "lasers":    [{"index", "date", "views", "plane": <laser plane, station frame>,
 //                   "residuals": {"rms", "max", "inliers", "points"}}],
 //    "stereo":    {"date", "pairs", "left": <camera>, "right": <camera, pose relative to left>,
-//                  "residuals": {"rms_px", "per_view_rms_px": [[left, right], ...]}}}
+//                  "pose": "station" | "camera" (left camera placed on the turntable or not),
+//                  "residuals": {"rms_px", "per_view_rms_px": [[left, right], ...]},
+//                  "turntable": <as "turntable", in the left camera's frame> (when posed)}}
 //
 // Lengths are in the unit of the board's square size (millimetres by convention).
 #pragma once
@@ -32,6 +34,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace scanstation::acquisition {
@@ -76,14 +79,19 @@ struct LaserPart {
   std::size_t inliers = 0, points = 0;
 };
 
-/// left at the identity pose, right: x_right = rotation · x_left + translation.
+/// left   at the identity pose, or in the station frame once the turntable
+///        axis was calibrated through it (posed, turntable set)
+/// right  relative to left: x_right = rotation · x_left + translation
+/// turntable  axis and platter origin in the left camera's frame
 struct StereoPart {
   std::string date;
   std::size_t pairs = 0;
   PinholeCamera left, right;
   double rms = 0;
   std::vector<std::array<double, 2>> per_view_rms;
+  std::optional<TurntablePart> turntable;
 };
+
 
 struct StationCalibration {
   std::filesystem::path source;  // the file read ("" when built in memory)
@@ -117,10 +125,11 @@ void check_calibration_matches(const StationCalibration& calibration, const driv
 void check_calibration_matches(const StationCalibration& calibration, const StationFingerprint& station);
 
 /// What a scan needs of a calibration.
-enum class CalibrationNeed { camera_pose, lasers, stereo };
+enum class CalibrationNeed { camera_pose, lasers, stereo, stereo_pose };
 /// Throws InvalidInput naming the file, what is missing and the command that
 /// provides it: the camera and its station pose (calibrate camera, then
-/// turntable), a plane for each of the station's `laser_count` lasers, the stereo pair.
+/// turntable), a plane for each of the station's `laser_count` lasers, the
+/// stereo pair, the stereo pair placed on the turntable.
 void check_calibration_complete(const StationCalibration& calibration, CalibrationNeed need, int laser_count = 0);
 
 /// Stores a fresh camera calibration. A new camera invalidates the turntable
@@ -133,6 +142,16 @@ std::vector<std::string> set_camera(StationCalibration& calibration, CameraPart 
 void set_turntable(StationCalibration& calibration, TurntablePart turntable);
 /// Stores (or replaces) the plane of laser part.index.
 void set_laser(StationCalibration& calibration, LaserPart laser);
+/// Stores a fresh stereo calibration: `turntable` (the axis seen by its left
+/// camera), when given, places the pair in the station frame — the axis is
+/// z, the platter top the origin, and y points from the middle between the
+/// two cameras towards the axis (the simulator's convention, so that points
+/// compare with its truth without a turn about the axis).
+void set_stereo(StationCalibration& calibration, StereoPart stereo, std::optional<TurntablePart> turntable);
+
+/// Both cameras of a posed stereo part in the station frame: the left as
+/// stored, the right composed with it.
+std::pair<PinholeCamera, PinholeCamera> stereo_cameras(const StereoPart& stereo);
 
 /// UTC time as ISO 8601 ("2026-12-01T17:00:00Z"), from SOURCE_DATE_EPOCH
 /// when set (reproducible files), else the system clock.

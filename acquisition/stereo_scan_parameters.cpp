@@ -31,6 +31,7 @@ json to_json(const StereoScanParameters& p) {
           {"pixel_step", r.pixel_step},
           {"volume_radius", p.volume_radius},
           {"volume_height", p.volume_height},
+          {"num_disparities", p.num_disparities},
           {"outlier_radius", p.outlier_radius},
           {"outlier_neighbours", p.outlier_neighbours}};
 }
@@ -60,6 +61,9 @@ StereoScanParameters stereo_scan_parameters_from_json(const json& value, const s
   read_key(value, "pixel_step", where, r.pixel_step, at_least(1), "an integer ≥ 1", missing);
   read_key(value, "volume_radius", where, p.volume_radius, positive, "a positive number", missing);
   read_key(value, "volume_height", where, p.volume_height, positive, "a positive number", missing);
+  read_key(value, "num_disparities", where, p.num_disparities,
+           [](int v) { return v >= 0 && v % 16 == 0 && v <= 1024; }, "0 (fitted) or a multiple of 16 up to 1024",
+           nullptr);
   read_key(value, "outlier_radius", where, p.outlier_radius, non_negative, "a number ≥ 0 (0 = off)", missing);
   read_key(value, "outlier_neighbours", where, p.outlier_neighbours, at_least(1), "an integer ≥ 1", missing);
   return p;

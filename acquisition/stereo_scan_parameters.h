@@ -18,12 +18,18 @@ namespace scanstation::acquisition {
 ///                 turntable axis standing on the platter: the disparity
 ///                 search covers it (fit_disparity_range), points outside it
 ///                 are background
+/// num_disparities  0: the disparity search spans the working volume
+///                 (fit_disparity_range); else this many disparities (a
+///                 multiple of 16) from the volume's farthest point on:
+///                 fewer miss the nearest surfaces, more search nearer than
+///                 the volume reaches
 /// outlier_radius, outlier_neighbours  radius outlier removal over the whole
 ///                 cloud after the last step (0 = off), as for the laser
 struct StereoScanParameters {
   StereoReconstructionOptions reconstruction;
   double volume_radius = 42.0;
   double volume_height = 82.0;
+  int num_disparities = 0;
   double outlier_radius = 0.0;
   int outlier_neighbours = 2;
 };
@@ -35,11 +41,12 @@ StereoScanParameters stereo_scan_defaults();
 /// {"block_size", "uniqueness_ratio", "speckle_window_size", "speckle_range",
 ///  "left_right_tolerance", "minimum_height", "discontinuity",
 ///  "minimum_texture", "pixel_step", "volume_radius", "volume_height",
-///  "outlier_radius", "outlier_neighbours"}
+///  "num_disparities", "outlier_radius", "outlier_neighbours"}
 nlohmann::json to_json(const StereoScanParameters& parameters);
 
 /// Reads what to_json wrote; a key that is absent keeps its value in `base`
-/// and is listed in `missing` (when given). A key of the wrong type or out of
+/// and is listed in `missing` (when given) — except "num_disparities", which
+/// sessions recorded before it existed lack (0: fitted to the volume). A key of the wrong type or out of
 /// range throws InvalidInput naming `where` and the key.
 StereoScanParameters stereo_scan_parameters_from_json(const nlohmann::json& value, const std::string& where,
                                                       const StereoScanParameters& base = stereo_scan_defaults(),

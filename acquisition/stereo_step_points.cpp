@@ -28,6 +28,7 @@ StereoScanSetup stereo_scan_setup(const TurntableGeometry& geometry, const Stere
   StereoScanSetup setup{stereo_station(geometry.camera, *geometry.right_camera), parameters.reconstruction};
   setup.options.matcher = fit_disparity_range(setup.station, parameters.volume_radius, parameters.volume_height,
                                               parameters.reconstruction.matcher);
+  if (parameters.num_disparities > 0) setup.options.matcher.num_disparities = parameters.num_disparities;
   setup.options.maximum_radius = parameters.volume_radius;
   setup.options.maximum_height = parameters.volume_height;
   return setup;

@@ -13,14 +13,29 @@ Scene with_board(Scene scene, const ChessboardTarget& board) {
 
 }  // namespace
 
+CalibrationStation::CalibrationStation(const drivers::StationDescription& station, Scene base,
+                                       const PinholeCamera& left, const PinholeCamera* right, std::uint64_t seed,
+                                       int supersampling)
+    : description_(station),
+      base_(std::move(base)),
+      stage_(std::make_shared<SceneStage>(std::make_shared<const SceneRenderer>(with_board(base_, {})))),
+      station_(description_, camera_role | turntable_role | (right ? right_camera_role : laser_role),
+               scene_frame_source_factory(stage_, left, description_, {}, seed, supersampling),
+               drivers::OnSignal::end_process,
+               // Two sensors, two noise streams (as sim/simulated_stereo.h).
+               right ? scene_frame_source_factory(stage_, *right, description_, {}, ~seed, supersampling)
+                     : FrameSourceFactory{}),
+      actuators_(virtual_actuators(*station_, description_)) {}
+
 CalibrationStation::CalibrationStation(const drivers::StationDescription& station, const TurntableLaserRig& rig,
                                        std::uint64_t seed, int supersampling)
-    : description_(station),
-      base_(turntable_scene({}, rig, kSimulatedPlatterRadius)),
-      stage_(std::make_shared<SceneStage>(std::make_shared<const SceneRenderer>(with_board(base_, {})))),
-      station_(description_, camera_role | laser_role | turntable_role,
-               scene_frame_source_factory(stage_, rig.camera, description_, {}, seed, supersampling)),
-      actuators_(virtual_actuators(*station_, description_)) {}
+    : CalibrationStation(station, turntable_scene({}, rig, kSimulatedPlatterRadius), rig.camera, nullptr, seed,
+                         supersampling) {}
+
+CalibrationStation::CalibrationStation(const drivers::StationDescription& station, const StereoRig& rig,
+                                       std::uint64_t seed, int supersampling)
+    : CalibrationStation(station, stereo_scene({}, rig, kSimulatedPlatterRadius, false), rig.left, &rig.right, seed,
+                         supersampling) {}
 
 void CalibrationStation::place(const BoardPlacement& placement) {
   const drivers::Timestamp now = station_->clock->now();

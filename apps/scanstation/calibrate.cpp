@@ -3,7 +3,9 @@
 // --backend sim, from chessboard views captured through the simulated
 // station's devices (acquisition/calibration_capture.h: the camera grabs, the
 // stepper turns the table, the lasers switch on their lines; the simulator's
-// operator moves the board between placements).
+// operator moves the board between placements). The stereo pair is captured
+// so through both cameras of the stereo station, and its left camera sees the
+// board at several table angles, which places the pair on the turntable.
 #include "acquisition/board_pose.h"
 #include "acquisition/calibration_capture.h"
 #include "acquisition/camera_calibration.h"
@@ -17,7 +19,7 @@
 #include "image_list.h"
 #include "sim/calibration_station.h"
 #include "sim/simulated_turntable.h"
-#include "sim/stereo_rig.h"
+#include "sim/simulated_stereo.h"
 #include "station_options.h"
 
 #include <opencv2/core/eigen.hpp>
@@ -64,11 +66,7 @@ class CalibrateCommand final : public Command {
 
     CLI::App* turntable = cli_->add_subcommand("turntable", "Turntable axis and platter origin (needs the camera part)");
     turntable->add_option("images", images_, "The board on the platter at several turntable angles (in order)");
-    turntable->add_option("--angles", angles_deg_, "Turntable angle of each image (degrees)")->delimiter(',');
-    turntable->add_option("--step", step_deg_, "Images taken every STEP degrees from 0 (instead of --angles)");
-    turntable->add_option("--lowest-corner-height", lowest_corner_height_,
-                          "Height of the board's lowest inner corner above the platter top (mm)");
-    turntable->add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")->capture_default_str();
+    add_turntable_options(*turntable);
 
     CLI::App* laser = cli_->add_subcommand("laser", "Laser light plane(s) from the stripe on the board (needs turntable)");
     laser->add_option("--laser", laser_, "Index of the laser (required with images; sim: all lasers)");
@@ -80,8 +78,10 @@ class CalibrateCommand final : public Command {
     stereo->add_option("--left", left_images_, "Left chessboard images (files, folders, list files)");
     stereo->add_option("--right", right_images_, "Right images of the same boards, in the same order");
     stereo->add_flag("--sample-flags", sample_flags_, "Use the flags of OpenCV's stereo_calib sample (the reference)");
-    stereo->add_option("--baseline", sim_baseline_, "With --backend sim: distance between the cameras, a fraction of the viewing distance")
-        ->capture_default_str();
+    stereo->add_option("--turntable", images_,
+                       "The board on the platter at several turntable angles seen by the left camera (in order): "
+                       "places the pair on the turntable, as a stereo scan needs");
+    add_turntable_options(*stereo);
     for (CLI::App* sub : {camera, turntable, laser, stereo}) sub->fallthrough();
   }
 
@@ -90,10 +90,12 @@ class CalibrateCommand final : public Command {
         board_.height < 2)
       throw InvalidInput("--board " + board_text_ + ": expected COLUMNSxROWS inner corners, e.g. 9x6");
     if (!(square_ > 0)) throw InvalidInput("--square: expected a positive size");
-    description_ = station_.description();
-    size_ = {description_.camera.format.size.width, description_.camera.format.size.height};
     sim_ = station_.backend == "sim";
     const std::string part = cli_->get_subcommands().front()->get_name();
+    // Without --station, the simulated stereo pair is the built-in stereo station's (`scan --rig stereo`).
+    description_ = sim_ && part == "stereo" && station_.station.empty() ? drivers::simulated_stereo_station()
+                                                                        : station_.description();
+    size_ = {description_.camera.format.size.width, description_.camera.format.size.height};
     // On the simulated turntable rig a board of 10 mm squares fills enough of
     // the view to pin fx to ~0.01% (8 mm: 0.1–0.2%, which costs a calibrated
     // scan its accuracy budget); the simulated stereo pair stands closer.
@@ -101,7 +103,10 @@ class CalibrateCommand final : public Command {
     if (sim_ && !(images_.empty() && off_images_.empty() && on_images_.empty() && left_images_.empty() &&
                   right_images_.empty()))
       throw InvalidInput("calibrate: give images or --backend sim, not both");
-    if (sim_) {
+    if (sim_ && part == "stereo") {
+      stereo_rig_ = sim::station_stereo_rig(description_);  // the rig `scan --rig stereo` scans with
+      size_ = {stereo_rig_.left.width, stereo_rig_.left.height};
+    } else if (sim_) {
       rig_ = sim::station_rig(description_);  // the rig `scan --backend sim` scans with
       size_ = {rig_.camera.width, rig_.camera.height};
     }
@@ -153,13 +158,6 @@ class CalibrateCommand final : public Command {
     return images;
   }
 
-  sim::Scene sim_scene() const {
-    sim::Scene scene;
-    scene.platter_radius = sim::kSimulatedPlatterRadius;
-    scene.lasers = rig_.lasers;
-    return scene;
-  }
-
   using Capture = std::function<std::vector<acquisition::CalibrationView>(
       acquisition::TurntableScanDevices&, const acquisition::PlaceBoard&, const ProgressCallback&)>;
 
@@ -196,18 +194,32 @@ class CalibrateCommand final : public Command {
                        });
   }
 
-  // The stereo pair's boards, rendered directly: the station's devices are one camera.
-  std::vector<cv::Mat> sim_board_images(CommandContext& context, const PinholeCamera& camera, std::uint64_t seed) const {
-    const sim::Scene scene = sim_scene();
-    const std::vector<sim::BoardPlacement> placements = sim::camera_placements(board_.width, board_.height, square_);
-    const ProgressCallback progress = context.progress.stage("render");
-    std::vector<cv::Mat> images;
-    for (const sim::BoardPlacement& placement : placements) {
-      images.push_back(sim::render_board(scene, placement, camera, false, seed + 10 * images.size()).laser_off);
-      if (progress) progress(static_cast<double>(images.size()) / static_cast<double>(placements.size()));
-    }
+  // The stereo pair through the devices of the simulated stereo station
+  // (sim/calibration_station.h): the board at the camera placements seen by
+  // both cameras, then the board standing once on the platter, the table
+  // turned to each angle of `turntable` and the left camera grabbing.
+  std::pair<std::vector<acquisition::StereoCalibrationView>, std::vector<acquisition::CalibrationView>>
+  sim_stereo_capture(CommandContext& context, const std::vector<sim::BoardPlacement>& pairs,
+                     const std::vector<sim::BoardPlacement>& turntable) const {
+    sim::CalibrationStation station(description_, stereo_rig_, 1, 2);
+    sim::OpenStation& open = station.devices();
+    for (const auto& note : open.notes) context.log->warn("{}", note);
+    acquisition::StereoScanDevices devices{*open.camera, *open.right_camera, nullptr, *open.turntable, *open.clock,
+                                           description_.camera.timeout};
+    std::vector<acquisition::StereoCalibrationView> pair_views = acquisition::capture_stereo_board_views(
+        devices, static_cast<int>(pairs.size()),
+        [&](int index, int) { station.place(pairs[static_cast<std::size_t>(index)]); },
+        context.progress.stage("capture pairs"));
     context.progress.finish();
-    return images;
+    acquisition::TurntableScanDevices left{*open.camera, {}, *open.turntable, *open.clock, description_.camera.timeout};
+    std::vector<double> angles_deg;
+    for (const sim::BoardPlacement& p : turntable) angles_deg.push_back(p.angle / degree);
+    std::vector<acquisition::CalibrationView> turntable_views = acquisition::capture_turntable_views(
+        left, angles_deg, [&](int, int) { station.place({turntable.front().board, 0.0}); },
+        context.progress.stage("capture turntable"));
+    context.progress.finish();
+    open.make_safe();
+    return {std::move(pair_views), std::move(turntable_views)};
   }
 
   void calibrate_camera(CommandContext& context, StationCalibration& calibration, json& result) {
@@ -265,18 +277,48 @@ class CalibrateCommand final : public Command {
       if (!lowest_corner_height_) lowest = sim::lowest_corner_height(placements.front().board);
     } else {
       images = read_images(images_, "turntable");
-      if (!lowest_corner_height_)
-        throw InvalidInput("turntable: --lowest-corner-height is needed (the board does not show where the platter is)");
-      if (!angles_deg_.empty() == step_deg_.has_value())
-        throw InvalidInput("turntable: give the angles with either --angles or --step");
-      for (std::size_t i = 0; i < images.size(); ++i)
-        angles.push_back((step_deg_ ? *step_deg_ * static_cast<double>(i) : i < angles_deg_.size() ? angles_deg_[i] : 0) * degree);
-      if (!angles_deg_.empty() && angles_deg_.size() != images.size())
-        throw InvalidInput("turntable: " + std::to_string(images.size()) + " images but " +
-                           std::to_string(angles_deg_.size()) + " --angles");
+      angles = image_angles(images.size(), "turntable");
     }
     StageTimer timer(context.report, "calibrate");
-    const PinholeCamera& camera = calibration.camera->camera;
+    const acquisition::TurntablePart part = turntable_part(images, angles, lowest, calibration.camera->camera, result);
+    acquisition::set_turntable(calibration, part);
+    if (sim_) {
+      const PinholeCamera& placed = calibration.camera->camera;
+      result["truth"] = {{"axis_error_deg", angle_between(part.axis_camera, rig_.camera.rotation.col(2)) / degree},
+                         {"camera_centre_error_mm", (placed.centre() - rig_.camera.centre()).norm()}};
+    }
+  }
+
+  // Adds the options of the board on the platter at several angles from images.
+  void add_turntable_options(CLI::App& sub) {
+    sub.add_option("--angles", angles_deg_, "Turntable angle of each image (degrees)")->delimiter(',');
+    sub.add_option("--step", step_deg_, "Images taken every STEP degrees from 0 (instead of --angles)");
+    sub.add_option("--lowest-corner-height", lowest_corner_height_,
+                   "Height of the board's lowest inner corner above the platter top (mm)");
+    sub.add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")->capture_default_str();
+  }
+
+  // The turntable angle of each of `count` images (radians), from --angles or --step.
+  std::vector<double> image_angles(std::size_t count, const char* what) const {
+    if (!lowest_corner_height_)
+      throw InvalidInput(std::string(what) +
+                         ": --lowest-corner-height is needed (the board does not show where the platter is)");
+    if (!angles_deg_.empty() == step_deg_.has_value())
+      throw InvalidInput(std::string(what) + ": give the angles with either --angles or --step");
+    if (!angles_deg_.empty() && angles_deg_.size() != count)
+      throw InvalidInput(std::string(what) + ": " + std::to_string(count) + " images but " +
+                         std::to_string(angles_deg_.size()) + " --angles");
+    std::vector<double> angles;
+    for (std::size_t i = 0; i < count; ++i)
+      angles.push_back((step_deg_ ? *step_deg_ * static_cast<double>(i) : angles_deg_[i]) * degree);
+    return angles;
+  }
+
+  // The turntable axis and platter origin in `camera`'s frame from the board
+  // at the table `angles` (radians), its lowest inner corner `lowest` above
+  // the platter; views, residuals into `result`.
+  acquisition::TurntablePart turntable_part(const std::vector<cv::Mat>& images, const std::vector<double>& angles,
+                                            double lowest, const PinholeCamera& camera, json& result) const {
     std::vector<acquisition::BoardPose> poses;
     std::vector<double> used_angles;
     for (std::size_t i = 0; i < images.size(); ++i)
@@ -295,16 +337,11 @@ class CalibrateCommand final : public Command {
     part.rms = axis.rms;
     part.max = axis.max;
     part.angle_rms = axis.angle_rms;
-    acquisition::set_turntable(calibration, part);
     result["views"] = {{"given", images.size()}, {"used", poses.size()}};
     result["residuals"] = {{"rms_mm", axis.rms}, {"max_mm", axis.max}, {"angle_rms_deg", axis.angle_rms / degree}};
-    if (sim_) {
-      const PinholeCamera& placed = calibration.camera->camera;
-      result["truth"] = {{"axis_error_deg", angle_between(axis.direction, rig_.camera.rotation.col(2)) / degree},
-                         {"camera_centre_error_mm", (placed.centre() - rig_.camera.centre()).norm()}};
-    }
     std::printf("turntable: board found at %zu of %zu angles, circle RMS %.4f mm (max %.4f), angle RMS %.4f deg\n",
                 poses.size(), images.size(), axis.rms, axis.max, axis.angle_rms / degree);
+    return part;
   }
 
   void calibrate_lasers(CommandContext& context, StationCalibration& calibration, json& result) {
@@ -372,15 +409,29 @@ class CalibrateCommand final : public Command {
 
   void calibrate_stereo(CommandContext& context, StationCalibration& calibration, json& result) {
     refuse_replacing(calibration.stereo.has_value(), "a stereo calibration (" + (calibration.stereo ? calibration.stereo->date : "") + ")");
-    std::vector<cv::Mat> left, right;
+    std::vector<cv::Mat> left, right, turntable_images;
+    std::vector<double> angles;
+    double lowest = lowest_corner_height_.value_or(0.0);
     if (sim_) {
-      const sim::StereoRig pair =
-          sim::stereo_rig(sim::kSimulatedRigHeight, sim::kSimulatedPlatterRadius, size_.width, size_.height, sim_baseline_);
-      left = sim_board_images(context, pair.left, 1);
-      right = sim_board_images(context, pair.right, 5000);
+      const auto turntable = sim::turntable_placements(board_.width, board_.height, square_, sim_views_);
+      const auto [pairs, views] =
+          sim_stereo_capture(context, sim::camera_placements(board_.width, board_.height, square_), turntable);
+      for (const auto& pair : pairs) {
+        left.push_back(pair.left);
+        right.push_back(pair.right);
+      }
+      for (const auto& view : views) {
+        turntable_images.push_back(view.off);
+        angles.push_back(view.angle_deg * degree);
+      }
+      if (!lowest_corner_height_) lowest = sim::lowest_corner_height(turntable.front().board);
     } else {
       left = read_images(left_images_, "stereo --left");
       right = read_images(right_images_, "stereo --right");
+      if (!images_.empty()) {
+        turntable_images = read_images(images_, "stereo --turntable");
+        angles = image_angles(turntable_images.size(), "stereo --turntable");
+      }
     }
     StageTimer timer(context.report, "calibrate");
     const acquisition::StereoCalibration stereo = acquisition::calibrate_stereo(
@@ -394,13 +445,43 @@ class CalibrateCommand final : public Command {
     part.right.translation = {stereo.translation[0], stereo.translation[1], stereo.translation[2]};
     part.rms = stereo.rms;
     for (const cv::Vec2d& v : stereo.per_view_rms) part.per_view_rms.push_back({v[0], v[1]});
-    calibration.stereo = part;
+    std::optional<acquisition::TurntablePart> turntable;
+    if (!turntable_images.empty())  // the axis seen by the left camera, through its calibrated intrinsics
+      turntable = turntable_part(turntable_images, angles, lowest, part.left, result["turntable"]);
+    acquisition::set_stereo(calibration, part, turntable);
     result["pairs"] = {{"given", left.size()}, {"used", part.pairs}};
-    result["residuals"] = {{"rms_px", stereo.rms}, {"left_rms_px", stereo.left.rms}, {"right_rms_px", stereo.right.rms}};
+    result["residuals"] = {{"rms_px", stereo.rms}, {"left_rms_px", stereo.left.rms}, {"right_rms_px", stereo.right.rms},
+                           {"per_view_rms_px", part.per_view_rms}};
     result["baseline"] = part.right.translation.norm();
+    result["posed"] = turntable.has_value();
+    if (sim_) result["truth"] = stereo_truth(*calibration.stereo);
     std::printf("stereo: board found in both images of %zu of %zu pairs, RMS %.3f px (left %.3f, right %.3f), "
-                "baseline %.2f\n", part.pairs, left.size(), stereo.rms, stereo.left.rms, stereo.right.rms,
-                part.right.translation.norm());
+                "baseline %.2f%s\n", part.pairs, left.size(), stereo.rms, stereo.left.rms, stereo.right.rms,
+                part.right.translation.norm(), turntable ? ", placed on the turntable" : "");
+  }
+
+  // The calibrated pair against the simulated rig it was captured from.
+  json stereo_truth(const acquisition::StereoPart& part) const {
+    const PinholeCamera& l = stereo_rig_.left;
+    const PinholeCamera& r = stereo_rig_.right;
+    const Eigen::Matrix3d R = r.rotation * l.rotation.transpose();  // x_right = R x_left + T
+    const Eigen::Vector3d T = r.translation - R * l.translation;
+    const double rotation_error = Eigen::AngleAxisd(part.right.rotation * R.transpose()).angle();
+    json truth = {{"left_fx_error", part.left.fx / l.fx - 1.0},
+                  {"left_fy_error", part.left.fy / l.fy - 1.0},
+                  {"right_fx_error", part.right.fx / r.fx - 1.0},
+                  {"right_fy_error", part.right.fy / r.fy - 1.0},
+                  {"baseline_error", part.right.translation.norm() / T.norm() - 1.0},
+                  {"translation_direction_error_deg", angle_between(part.right.translation, T) / degree},
+                  {"rotation_error_deg", rotation_error / degree}};
+    if (part.turntable) {
+      const auto [left, right] = acquisition::stereo_cameras(part);
+      truth["axis_error_deg"] = angle_between(part.turntable->axis_camera, l.rotation.col(2)) / degree;
+      truth["left_centre_error_mm"] = (left.centre() - l.centre()).norm();
+      truth["right_centre_error_mm"] = (right.centre() - r.centre()).norm();
+      truth["left_orientation_error_deg"] = Eigen::AngleAxisd(left.rotation * l.rotation.transpose()).angle() / degree;
+    }
+    return truth;
   }
 
   StationOptions station_;
@@ -414,12 +495,12 @@ class CalibrateCommand final : public Command {
   int sim_views_ = 9;
   std::optional<int> laser_;
   acquisition::LaserPlaneOptions laser_options_;
-  double sim_baseline_ = 0.2;
 
   drivers::StationDescription description_;
   cv::Size board_, size_;
   bool sim_ = false, existed_ = false, force_ = false;
   sim::TurntableLaserRig rig_;
+  sim::StereoRig stereo_rig_;
 };
 
 }  // namespace

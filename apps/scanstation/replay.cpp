@@ -32,6 +32,7 @@ class ReplayCommand final : public Command {
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     parameters_.add_to(*cli_);
+    stereo_.add_to(*cli_);
   }
 
   void run(CommandContext& context) override {
@@ -41,6 +42,8 @@ class ReplayCommand final : public Command {
     const acquisition::SessionContents contents = acquisition::read_session(session_);
     station::SessionProcessing processing = session_processing(context, contents.manifest, density_);
     if (parameters_.any()) processing.replay.parameters = parameters_.apply(contents.manifest.parameters);
+    if (!stereo_.given().empty())
+      processing.replay.stereo_parameters = stereo_.apply(contents.manifest.stereo_parameters);
     if (!calibration_.empty())
       processing.replay.geometry = acquisition::replay_geometry(calibration_, contents, calibration_max_age_);
     processing.replay.progress = context.progress.stage("replay");
@@ -78,6 +81,7 @@ class ReplayCommand final : public Command {
   std::filesystem::path calibration_;
   double calibration_max_age_ = acquisition::kCalibrationMaxAgeDays;
   ScanParameterOptions parameters_;
+  StereoParameterOptions stereo_;
 };
 
 }  // namespace

@@ -49,11 +49,7 @@ class ScanCommand final : public Command {
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     parameters_.add_to(*cli_);
-    cli_->add_option("--pixel-step", job_.stereo_parameters.reconstruction.pixel_step,
-                     "--rig stereo: reproject every n-th pixel of every n-th row (an even sampling, sparse enough "
-                     "for the live boundary)")
-        ->check(CLI::Range(1, 1000))
-        ->capture_default_str();
+    stereo_.add_to(*cli_);
     cli_->footer("With --progress=json, every step emits a \"step\" event and a \"boundary\" event (points so far, "
                  "boundary triangles, all_on_boundary). Ctrl-C stops after the current step and still writes the "
                  "results; --resume continues.");
@@ -65,15 +61,17 @@ class ScanCommand final : public Command {
     job_.rig = job_.resume && !job_.rig_given ? acquisition::read_session(job_.folder).manifest.rig : rig_;
     if (job_.rig == "stereo" && parameters_.any())
       throw InvalidInput("--rig stereo: the laser processing options (--peak-fit, --row-step, ...) do not apply");
-    if (job_.rig != "stereo" && cli_->count("--pixel-step"))
-      throw InvalidInput("--pixel-step: a stereo option; the laser rig takes --row-step");
-    job_.parameters_given = parameters_.any() || cli_->count("--pixel-step") > 0;
+    if (job_.rig != "stereo" && !stereo_.given().empty())
+      throw InvalidInput(stereo_.given() + ": a stereo option; the laser rig takes --row-step and the other laser "
+                         "processing options");
+    job_.parameters_given = parameters_.any() || !stereo_.given().empty();
     // Without --station the built-in simulated station of the rig.
     job_.station = job_.rig == "stereo" && station_.station.empty() ? drivers::simulated_stereo_station()
                                                                     : station_.description();
     job_.steps_given = cli_->count("--steps") > 0;
     job_.object_given = cli_->count("--object") > 0;
     job_.parameters = parameters_.apply({});
+    job_.stereo_parameters = stereo_.apply(acquisition::stereo_scan_defaults());
     run_scan_job(context, job_);
   }
 
@@ -82,6 +80,7 @@ class ScanCommand final : public Command {
   StationOptions station_;
   ScanJob job_;
   ScanParameterOptions parameters_;
+  StereoParameterOptions stereo_;
 };
 
 }  // namespace

@@ -35,17 +35,6 @@ std::string recorded_object(const acquisition::SessionManifest& m) {
   return m.object.mesh_file.empty() ? m.object.name : m.object.mesh_file;
 }
 
-// The stereo rig takes the simulator's true cameras: a stereo calibration
-// (calibrate stereo) does not place the cameras on the turntable yet.
-acquisition::TurntableGeometry stereo_geometry(const ScanJob& job, const sim::StereoRig& rig) {
-  if ((!job.calibration.empty() && job.calibration != acquisition::kSimulatorTruth) ||
-      (job.calibration.empty() && !job.station.calibration.empty()))
-    throw InvalidInput("--rig stereo: scans with the simulator's true cameras only (a stereo calibration does not "
-                       "place the cameras on the turntable yet); drop --calibration, or give --calibration " +
-                       std::string(acquisition::kSimulatorTruth));
-  return acquisition::simulator_truth(rig.left, {}, rig.right);
-}
-
 // The simulated station's rig, laser or stereo, with the object on it.
 struct SimulatedRig {
   std::optional<sim::SimulatedTurntable> laser;
@@ -74,11 +63,14 @@ SessionRecorder create_session(CommandContext& context, const ScanJob& job, cons
   manifest.steps = job.steps;
   manifest.station = acquisition::station_json(job.station);
   manifest.station["sim_seed"] = job.seed;
-  manifest.geometry = rig.stereo ? stereo_geometry(job, rig.stereo->rig)
-                                 : acquisition::scan_geometry(job.calibration, job.station,
-                                                              acquisition::simulator_truth(rig.laser->rig.camera,
-                                                                                           sim::light_planes(rig.laser->rig)),
-                                                              job.calibration_max_age);
+  manifest.geometry =
+      rig.stereo ? acquisition::scan_geometry(job.calibration, job.station,
+                                              acquisition::simulator_truth(rig.stereo->rig.left, {}, rig.stereo->rig.right),
+                                              job.calibration_max_age, acquisition::CalibrationNeed::stereo_pose)
+                 : acquisition::scan_geometry(job.calibration, job.station,
+                                              acquisition::simulator_truth(rig.laser->rig.camera,
+                                                                           sim::light_planes(rig.laser->rig)),
+                                              job.calibration_max_age);
   manifest.parameters = job.parameters;
   manifest.stereo_parameters = job.stereo_parameters;
   const sim::ScanObject& object = rig.object();

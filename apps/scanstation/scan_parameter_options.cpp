@@ -48,4 +48,56 @@ acquisition::LaserScanParameters ScanParameterOptions::apply(acquisition::LaserS
   return p;
 }
 
+namespace {
+
+// An integer in low..high that is a multiple of `factor`.
+CLI::Validator multiple_in(int low, int high, int factor, int offset, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        int v = 0;
+        std::size_t used = 0;
+        try {
+          v = std::stoi(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || v < low || v > high || (v - offset) % factor != 0)
+          return "expected " + what + ", got " + text;
+        return "";
+      },
+      what);
+}
+
+}  // namespace
+
+void StereoParameterOptions::add_to(CLI::App& cli) {
+  cli.add_option("--block-size", block_size, "--rig stereo: SGBM matching block (odd pixels)")
+      ->check(multiple_in(1, 51, 2, 1, "an odd integer in 1..51"));
+  cli.add_option("--num-disparities", num_disparities,
+                 "--rig stereo: disparities searched (a multiple of 16; default: fitted to the working volume)")
+      ->check(multiple_in(16, 1024, 16, 0, "a multiple of 16 in 16..1024"));
+  cli.add_option("--uniqueness", uniqueness_ratio, "--rig stereo: SGBM uniqueness ratio (percent)")
+      ->check(CLI::Range(0, 100));
+  cli.add_option("--pixel-step", pixel_step,
+                 "--rig stereo: reproject every n-th pixel of every n-th row (an even sampling, sparse enough for the "
+                 "live boundary; default 8)")
+      ->check(CLI::Range(1, 1000));
+}
+
+std::string StereoParameterOptions::given() const {
+  if (block_size) return "--block-size";
+  if (num_disparities) return "--num-disparities";
+  if (uniqueness_ratio) return "--uniqueness";
+  if (pixel_step) return "--pixel-step";
+  return "";
+}
+
+acquisition::StereoScanParameters StereoParameterOptions::apply(acquisition::StereoScanParameters p) const {
+  if (block_size) p.reconstruction.matcher.block_size = *block_size;
+  if (num_disparities) p.num_disparities = *num_disparities;
+  if (uniqueness_ratio) p.reconstruction.matcher.uniqueness_ratio = *uniqueness_ratio;
+  if (pixel_step) p.reconstruction.pixel_step = *pixel_step;
+  return p;
+}
+
 }  // namespace scanstation::app

@@ -1,9 +1,10 @@
-// The laser-scan processing options `scan` and `replay` share: each given
-// option overrides the base parameters (the defaults for a scan, the
-// session's recorded ones for a replay).
+// The processing options `scan` and `replay` share, of the laser rig and of
+// the stereo rig: each given option overrides the base parameters (the
+// defaults for a scan, the session's recorded ones for a replay).
 #pragma once
 
 #include "acquisition/laser_scan_parameters.h"
+#include "acquisition/stereo_scan_parameters.h"
 
 #include <CLI/CLI.hpp>
 #include <optional>
@@ -20,6 +21,15 @@ struct ScanParameterOptions {
   void add_to(CLI::App& cli);
   bool any() const;
   acquisition::LaserScanParameters apply(acquisition::LaserScanParameters base) const;
+};
+
+struct StereoParameterOptions {
+  std::optional<int> block_size, num_disparities, uniqueness_ratio, pixel_step;
+
+  void add_to(CLI::App& cli);
+  /// The first option given ("--block-size", ...), or "" when none was.
+  std::string given() const;
+  acquisition::StereoScanParameters apply(acquisition::StereoScanParameters base) const;
 };
 
 }  // namespace scanstation::app

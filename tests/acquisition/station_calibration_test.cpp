@@ -9,6 +9,8 @@
 #include "acquisition/turntable_axis_calibration.h"
 #include "core/errors.h"
 #include "sim/calibration_views.h"
+#include "sim/simulated_turntable.h"
+#include "sim/stereo_rig.h"
 #include "sim/turntable_rig.h"
 #include "test_support.h"
 
@@ -322,6 +324,57 @@ TEST(StationCalibrationFile, MismatchedStationAndDamagedFilesAreRefusedWithTheFi
   test::expect_error<FormatError>([&] { read_station_calibration(write("{\n  \"format\": \n")); }, {"bad.json:", "JSON"});
   test::expect_error<InvalidInput>([&] { read_station_calibration(write("{\"format\": \"other\"}")); },
                                    {"not a scanstation calibration"});
+}
+
+TEST(StationCalibrationFile, StereoPairPlacedOnTheTurntableWhereTheRigHasIt) {
+  // The simulated stereo rig's truth, as a stereo calibration and the axis
+  // seen by its left camera would give it.
+  const sim::StereoRig rig = sim::stereo_rig(sim::kSimulatedRigHeight, sim::kSimulatedPlatterRadius, 640, 480);
+  StereoPart stereo;
+  stereo.date = "2026-12-01T17:00:00Z";
+  stereo.pairs = 12;
+  stereo.left = stereo.right = rig.left;
+  stereo.right.distortion = rig.right.distortion;
+  stereo.right.rotation = rig.right.rotation * rig.left.rotation.transpose();
+  stereo.right.translation = rig.right.translation - stereo.right.rotation * rig.left.translation;
+  stereo.per_view_rms = {{0.1, 0.1}};
+  TurntablePart turntable;
+  turntable.date = stereo.date;
+  turntable.axis_camera = rig.left.rotation.col(2);
+  turntable.origin_camera = rig.left.translation;
+
+  const drivers::StationDescription description = drivers::simulated_stereo_station();
+  StationCalibration c;
+  c.software_version = "test";
+  c.created = c.updated = stereo.date;
+  c.station = station_fingerprint(description);
+  c.source = "stereo.json";
+  set_stereo(c, stereo, std::nullopt);
+  EXPECT_NO_THROW(check_calibration_complete(c, CalibrationNeed::stereo));
+  test::expect_error<InvalidInput>([&] { check_calibration_complete(c, CalibrationNeed::stereo_pose); },
+                                   {"stereo.json", "does not place the stereo pair on the turntable"});
+  set_stereo(c, stereo, turntable);
+  EXPECT_NO_THROW(check_calibration_complete(c, CalibrationNeed::stereo_pose));
+  // y from the middle between the cameras to the axis: the rig's own frame.
+  const auto [left, right] = stereo_cameras(*c.stereo);
+  EXPECT_LT((left.rotation - rig.left.rotation).norm(), 1e-9);
+  EXPECT_LT((left.translation - rig.left.translation).norm(), 1e-9);
+  EXPECT_LT((right.rotation - rig.right.rotation).norm(), 1e-9);
+  EXPECT_LT((right.translation - rig.right.translation).norm(), 1e-9);
+
+  test::ScratchFolder folder;
+  write_station_calibration(folder / "stereo.json", c, io::Overwrite::refuse);
+  const StationCalibration back = read_station_calibration(folder / "stereo.json");
+  EXPECT_EQ(to_json(back), to_json(c));
+  EXPECT_EQ(to_json(back)["stereo"]["pose"], "station");
+
+  // The fingerprint covers the right camera; a laser station's has none.
+  EXPECT_TRUE(c.station.devices.contains("right_camera"));
+  EXPECT_FALSE(station_fingerprint(drivers::StationDescription{}).devices.contains("right_camera"));
+  drivers::StationDescription other = description;
+  other.right_camera->format.format = drivers::PixelFormat::yuyv;
+  test::expect_error<InvalidInput>([&] { check_calibration_matches(back, other); },
+                                   {"stereo.json", "right_camera.format: calibrated"});
 }
 
 }  // namespace

@@ -87,7 +87,13 @@ TEST(StereoSession, ParametersRoundTripAndBadValuesNamed) {
   EXPECT_EQ(to_json(back), to_json(p));
   std::vector<std::string> missing;
   stereo_scan_parameters_from_json(json::object(), "m", stereo_scan_defaults(), &missing);
-  EXPECT_EQ(missing.size(), to_json(p).size()) << "every key named when absent";
+  // Every key named when absent but num_disparities, which older sessions lack (0: fitted).
+  EXPECT_EQ(missing.size(), to_json(p).size() - 1);
+  EXPECT_THAT(missing, testing::Not(testing::Contains(testing::HasSubstr("num_disparities"))));
+  p.num_disparities = 96;
+  EXPECT_EQ(stereo_scan_parameters_from_json(to_json(p), "m").num_disparities, 96);
+  test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"num_disparities", 40}}, "p"); },
+                                   {"p.num_disparities", "multiple of 16"});
   test::expect_error<InvalidInput>(
       [] { stereo_scan_parameters_from_json({{"block_size", 4}}, "manifest.json: parameters"); },
       {"manifest.json: parameters.block_size", "odd integer"});

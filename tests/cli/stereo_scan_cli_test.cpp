@@ -163,7 +163,7 @@ TEST(StereoScanInput, MissingOrMismatchedStereoRolesAreRefusedClearly) {
   refused(left + "[right_camera]\nwidht = 320\n", "", {"station.toml:", "right_camera.widht: unknown key"});
   const std::string stereo = left + "[right_camera]\nbackend = \"sim\"\nwidth = 320\nheight = 240\n";
   refused(stereo, "--row-step 2", {"--rig stereo", "laser processing options"});
-  refused(stereo, "--calibration " + (dir / "cal.json").string(), {"--rig stereo", "true cameras"});
+  refused(stereo, "--calibration " + (dir / "cal.json").string(), {"cal.json does not exist", "calibrate stereo"});
   const Outcome pixel_step = scanstation("scan --rig turntable --pixel-step 2 -o " + (dir / "t").string());
   EXPECT_EQ(pixel_step.exit_code, 1);
   EXPECT_THAT(pixel_step.err, testing::HasSubstr("--pixel-step: a stereo option"));
