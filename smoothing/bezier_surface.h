@@ -4,9 +4,35 @@
 
 #include "smoothing/bezier_triangle.h"
 
+#include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace scanstation {
+
+/// std::allocator whose resize() default-initialises instead of
+/// value-initialising: a std::array of Eigen vectors is then left unwritten
+/// (not zeroed), so a scheme that fills its patches in place writes each
+/// byte once.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <class U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 /// patches  the micro triangles; corners counter-clockwise from outside
 /// macro    for each patch, the index of the input (macro) triangle it splits
@@ -16,8 +42,8 @@ namespace scanstation {
 ///          the closest solution was taken and the edge need not be G¹
 /// Adjacent patches share their common edge's four control points bit for bit.
 struct BezierSurface {
-  std::vector<CubicTriangle> patches;
-  std::vector<int> macro;
+  std::vector<CubicTriangle, UninitialisedAllocator<CubicTriangle>> patches;
+  std::vector<int, UninitialisedAllocator<int>> macro;
   std::size_t dependent_edges = 0;
 };
 

@@ -61,8 +61,11 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
     case SplitScheme::three_split: result.surface = three_split(V, mesh.faces, N, edges, three_split_options); break;
     case SplitScheme::adaptive_two_split: {
       const std::vector<TwoSplitPair> pairs = two_split_pairs(V, mesh.faces, edges, options.min_angle);
-      result.surface = two_split(V, mesh.faces, N, edges, pairs, three_split_options);
+      TwoSplitCounts counts;
+      result.surface = two_split(V, mesh.faces, N, edges, pairs, three_split_options, &counts);
       result.two_split_candidates = 2 * pairs.size();
+      result.two_split_pairs = counts.pairs;
+      result.adjacent_two_split_pairs = counts.adjacent_pairs;
       // Candidates whose pair would violate the G¹ orientation stay three-split.
       result.two_split_triangles = 3 * std::size_t(mesh.face_count()) - result.surface.patches.size();
       break;
@@ -100,6 +103,8 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
     report["min_angle"] = options.min_angle;
     report["two_split_candidates"] = s.two_split_candidates;
     report["two_split_triangles"] = s.two_split_triangles;
+    report["two_split_pairs"] = s.two_split_pairs;
+    report["adjacent_two_split_pairs"] = s.adjacent_two_split_pairs;
   }
   return report;
 }

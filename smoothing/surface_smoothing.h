@@ -46,12 +46,15 @@ struct SurfaceSmoothingOptions {
 /// sign_condition_violations  vertices where it still fails (not G¹ there)
 /// two_split_candidates  macro triangles below min_angle (adaptive two-split)
 /// two_split_triangles   of those, the ones actually two-split
+/// two_split_pairs, adjacent_two_split_pairs  the pairs built, and those of
+///                       them sharing a three-split neighbour with another
 /// g1, oscillation      the verification (Eq. 8.7) and the oscillation measure
 struct SurfaceSmoothing {
   BezierSurface surface;
   std::vector<int> adjusted_vertices;
   std::size_t sign_condition_violations = 0;
   std::size_t two_split_candidates = 0, two_split_triangles = 0;
+  std::size_t two_split_pairs = 0, adjacent_two_split_pairs = 0;
   G1Verification g1;
   Oscillation oscillation;
   double normals_seconds = 0, patches_seconds = 0, verification_seconds = 0;

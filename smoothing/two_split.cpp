@@ -7,10 +7,15 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace scanstation {
 
@@ -57,92 +62,191 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vector3& n) {
   return T;
 }
 
-// The ratio condition of Equations (9.7a) and (9.7e) around one pair, the
-// part "an algorithm given by [Farin, 83]" does in the thesis. The macro
-// patches are those of Steps 1–3; the cycle of outer edges is A → C → B → D
-// → A (vertex i to vertex i+1, as the neighbours run them), `neighbour[i]`
-// the macro patch across edge i with that edge as its local edge c[i],
-// pair_macro P and Q (edges 0, 1 in P), and inner[i] the pair's point next to
-// vertex i on its inner edge (K_A, W_C, K_B, W_D, first as subdivided), in
-// the tangent plane of normal[i]. Per outer edge, E, F, G = (1, f, g)
-// constant, fitted to the subdivided points at both ends; then the two
-// Step-2 points of each outer edge and the four inner points move least (in
-// their vertices' tangent planes) so that both ends meet (9.7a, e) exactly:
-// with R0 = (V0 + K0 + O0)/3, the three-split's subdivided point,
-//   (1 + g/3)(K0 − V0) + f(L0 − V0) + (g/3)(O0 − V0) = 0 at the start and
-//   −(1 + f + 2g/3)(K3 − V3) + f(L2 − V3) + (g/3)(O3 − V3) = 0 at the end,
-// sixteen linear equations in twenty-four tangent coordinates. Updates the
-// macro patches (edge points, then Step 3 again), `inner` and `fg`; returns
-// false when the system is dependent.
-bool meet_ratio_conditions(const std::array<CubicTriangle*, 4>& neighbour, const std::array<int, 4>& c,
-                           const std::array<CubicTriangle*, 2>& pair_macro, std::array<Vector3, 4>& inner,
-                           const std::array<Vector3, 4>& normal, std::array<Eigen::Vector2d, 4>& fg) {
-  struct End {
-    Vector3 V, K, O;
-    int K_index, O_index;
-  };
-  std::array<End, 8> ends;  // 2i: edge i at vertex i, 2i+1: at vertex i+1
+// One candidate pair: P = face f split on its edge e (A → B), Q = face g
+// (edge d, B → A); the cycle of vertices A, C, B, D and the outer edges A →
+// C, C → B, B → D, D → A as the three-split neighbours run them: outer edge
+// i is local edge c[i] of face neighbour[i], from vertex[i] to vertex[i+1];
+// inner[i] the pair's point next to vertex i on its inner edge (K_A, W_C,
+// K_B, W_D); fg[i] the constant coefficients of Equation (9.7) on edge i.
+struct PairData {
+  int f, e, g, d;
+  std::array<int, 4> neighbour, c, vertex;
+  std::array<Vector3, 4> inner;
+  std::array<Eigen::Vector2d, 4> fg;
+};
+
+// The corner of `face` at vertex v.
+int local_corner(const Eigen::MatrixX3i& F, int face, int v) {
+  return F(face, 0) == v ? 0 : F(face, 1) == v ? 1 : 2;
+}
+
+// The Step-2 point of `face` next to vertex v towards vertex w.
+Vector3& edge_point(std::vector<CubicTriangle>& macro, const Eigen::MatrixX3i& F, int face, int v, int w) {
+  return macro[face][next_to(local_corner(F, face, v), local_corner(F, face, w))];
+}
+
+std::uint64_t directed(int v, int w) { return std::uint64_t(std::uint32_t(v)) << 32 | std::uint32_t(w); }
+
+// Per outer edge, E, F, G = (1, f, g) constant (Equation 9.7), fitted to
+// the subdivided points at both ends of the macro patches of Steps 1–3:
+// (K0 − V0) + f(L0 − V0) + g(R0 − V0) = 0 and (V3 − K3) + f(L2 − K3) + g(R2 −
+// K3) = 0 by least squares, R = (V + K + O)/3 the neighbour's subdivided
+// point. False when not finite.
+bool fit_outer_coefficients(PairData& p, const std::vector<CubicTriangle>& macro) {
   for (int i = 0; i < 4; ++i) {
-    const CubicTriangle& N = *neighbour[i];
-    const int a = c[i], b = (c[i] + 1) % 3, o = (c[i] + 2) % 3;
-    ends[2 * i] = {N[corner(a)], N[next_to(a, b)], N[next_to(a, o)], next_to(a, b), next_to(a, o)};
-    ends[2 * i + 1] = {N[corner(b)], N[next_to(b, a)], N[next_to(b, o)], next_to(b, a), next_to(b, o)};
-  }
-  // Fit (f, g) per edge to the subdivided points at both ends.
-  for (int i = 0; i < 4; ++i) {
-    const End& s = ends[2 * i];
-    const End& t = ends[2 * i + 1];
-    const Vector3 R0 = (s.V + s.K + s.O) / 3.0, R2 = (t.V + t.K + t.O) / 3.0;
+    const CubicTriangle& N = macro[p.neighbour[i]];
+    const int a = p.c[i], b = (p.c[i] + 1) % 3, o = (p.c[i] + 2) % 3;
+    const Vector3 &Va = N[corner(a)], &Ka = N[next_to(a, b)], &Vb = N[corner(b)], &Kb = N[next_to(b, a)];
+    const Vector3 R0 = (Va + Ka + N[next_to(a, o)]) / 3.0, R2 = (Vb + Kb + N[next_to(b, o)]) / 3.0;
     Eigen::Matrix<double, 6, 2> X;
     Eigen::Matrix<double, 6, 1> y;
-    X << inner[i] - s.V, R0 - s.V, inner[(i + 1) % 4] - t.K, R2 - t.K;
-    y << -(s.K - s.V), -(t.V - t.K);
-    fg[i] = (X.transpose() * X).ldlt().solve(X.transpose() * y);
+    X << p.inner[i] - Va, R0 - Va, p.inner[(i + 1) % 4] - Kb, R2 - Kb;
+    y << -(Ka - Va), -(Vb - Kb);
+    p.fg[i] = (X.transpose() * X).ldlt().solve(X.transpose() * y);
     // At a small angle of the thin triangle the subdivided L0 lies almost on
     // the edge line and the fit may give f or g of the wrong sign or near 0
     // (R1 would then be thrown far); the points are free to move instead.
-    fg[i] = fg[i].cwiseMin(-0.2);
-    if (!fg[i].allFinite()) return false;
+    p.fg[i] = p.fg[i].cwiseMin(-0.2);
+    if (!p.fg[i].allFinite()) return false;
   }
-  Eigen::Matrix<double, 16, 24> J = Eigen::Matrix<double, 16, 24>::Zero();
-  Eigen::Matrix<double, 16, 1> r;
-  std::array<Eigen::Matrix<double, 3, 2>, 4> T;
-  for (int v = 0; v < 4; ++v) T[v] = tangent_basis(normal[v]);
-  for (int i = 0; i < 4; ++i)
-    for (int end = 0; end < 2; ++end) {
-      const End& e = ends[2 * i + end];
-      const int v = (i + end) % 4;
-      const double f = fg[i].x(), g = fg[i].y();
-      const double k = end == 0 ? 1.0 + g / 3.0 : -(1.0 + f + 2.0 * g / 3.0);
-      const int row = 2 * (2 * i + end);
-      J.block<2, 2>(row, 2 * (2 * i + end)) = k * Eigen::Matrix2d::Identity();
-      J.block<2, 2>(row, 16 + 2 * v) = f * Eigen::Matrix2d::Identity();
-      r.segment<2>(row) = -T[v].transpose() * (k * (e.K - e.V) + f * (inner[v] - e.V) + g / 3.0 * (e.O - e.V));
-    }
-  const Eigen::LLT<Eigen::Matrix<double, 16, 16>> llt(J * J.transpose());
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::Matrix<double, 24, 1> delta = J.transpose() * llt.solve(r);
-  for (int i = 0; i < 4; ++i)
-    for (int end = 0; end < 2; ++end) {
-      const End& e = ends[2 * i + end];
-      const int v = (i + end) % 4;
-      const Vector3 K = e.K + T[v] * delta.segment<2>(2 * (2 * i + end));
-      (*neighbour[i])[e.K_index] = K;
-      // The same edge point in the pair's macro patch: the point next to
-      // vertex v towards the other end of edge i.
-      CubicTriangle& P = *pair_macro[i / 2];
-      const Vector3& other_end = ends[2 * i + 1 - end].V;
-      int at = -1, towards = -1;
-      for (int k = 0; k < 3; ++k) {
-        if (P[corner(k)] == e.V) at = k;
-        if (P[corner(k)] == other_end) towards = k;
-      }
-      P[next_to(at, towards)] = K;
-    }
-  for (int v = 0; v < 4; ++v) inner[v] += T[v] * delta.segment<2>(16 + 2 * v);
-  for (CubicTriangle* n : neighbour) set_centre_point(*n);
-  for (CubicTriangle* f : pair_macro) set_centre_point(*f);
   return true;
+}
+
+// The ratio condition of Equations (9.7a) and (9.7e) around the active
+// pairs, the part "an algorithm given by [Farin, 83]" does in the thesis. With
+// R0 = (V0 + K0 + O0)/3, the three-split neighbour's subdivided point (K0, O0
+// its Step-2 points at V0 on the outer edge and on its other edge), E, F, G =
+// (1, f, g) constant on each outer edge:
+//   (1 + g/3)(K0 − V0) + f(L0 − V0) + (g/3)(O0 − V0) = 0 at the start and
+//   −(1 + f + 2g/3)(K3 − V3) + f(L2 − V3) + (g/3)(O3 − V3) = 0 at the end,
+// L the pair's inner point. The Step-2 points of every outer edge and the
+// inner points move least, in their vertices' tangent planes, so that all
+// ends meet it. A three-split triangle that borders two or three pairs (the
+// thesis' "two or three sides of a triangle are split") couples them: the O
+// of one pair's end is a K of the other's, so such pairs are solved together
+// (one least-norm system per group of coupled pairs, sixteen equations per
+// pair; a lone pair is the old 16 × 24 system). Moves the macro patches' edge
+// points (then Step 3 again) and the pairs' inner points; returns the pairs
+// (indices into `pairs`) of groups whose system was dependent, which are left
+// unmoved.
+std::vector<int> meet_ratio_conditions(std::vector<PairData>& pairs, const std::vector<int>& active,
+                                       std::vector<CubicTriangle>& macro, const Eigen::MatrixX3i& F,
+                                       const Eigen::MatrixX3d& N, const MeshEdges& edges) {
+  // Unknowns: the two Step-2 points of each outer edge (keyed by their vertex
+  // and the edge's other vertex, shared by the neighbour and the pair
+  // triangle), then the four inner points of each pair.
+  struct EdgePoint {
+    int v, w, three, owner;  // owner: index into `active`
+  };
+  std::vector<EdgePoint> points;
+  std::unordered_map<std::uint64_t, int> point_of;
+  for (int a = 0; a < int(active.size()); ++a) {
+    const PairData& p = pairs[active[a]];
+    for (int i = 0; i < 4; ++i) {
+      const int v = p.vertex[i], w = p.vertex[(i + 1) % 4];
+      for (const auto& [from, to] : {std::pair{v, w}, std::pair{w, v}}) {
+        point_of.emplace(directed(from, to), int(points.size()));
+        points.push_back({from, to, p.neighbour[i], a});
+      }
+    }
+  }
+  // Groups of coupled pairs (union–find over the O points that are unknowns).
+  std::vector<int> group(active.size());
+  for (int a = 0; a < int(active.size()); ++a) group[a] = a;
+  const auto root = [&group](int a) {
+    while (group[a] != a) a = group[a] = group[group[a]];
+    return a;
+  };
+  const auto other_point = [&](const PairData& p, int i, int end) {  // O at that end, or −1
+    const int three = p.neighbour[i], o = F(three, (p.c[i] + 2) % 3);
+    const auto it = point_of.find(directed(p.vertex[(i + end) % 4], o));
+    return it == point_of.end() ? -1 : it->second;
+  };
+  for (int a = 0; a < int(active.size()); ++a)
+    for (int i = 0; i < 4; ++i)
+      for (int end = 0; end < 2; ++end)
+        if (const int o = other_point(pairs[active[a]], i, end); o >= 0) group[root(a)] = root(points[o].owner);
+  std::vector<std::vector<int>> members(active.size()), member_points(active.size());
+  for (int a = 0; a < int(active.size()); ++a) members[root(a)].push_back(a);
+  for (int k = 0; k < int(points.size()); ++k) member_points[root(points[k].owner)].push_back(k);
+
+  std::vector<int> dependent;
+  std::vector<int> column(points.size(), -1);
+  std::vector<Eigen::Matrix<double, 3, 2>> basis(N.rows());
+  std::vector<bool> has_basis(N.rows(), false);
+  const auto tangent = [&](int v) -> const Eigen::Matrix<double, 3, 2>& {
+    if (!has_basis[v]) basis[v] = tangent_basis(N.row(v)), has_basis[v] = true;
+    return basis[v];
+  };
+  for (std::size_t root_of_group = 0; root_of_group < members.size(); ++root_of_group) {
+    const std::vector<int>& member = members[root_of_group];
+    const std::vector<int>& group_points = member_points[root_of_group];
+    if (member.empty()) continue;
+    // Columns: 2 per edge point of the group, then 2 per inner point.
+    for (std::size_t j = 0; j < group_points.size(); ++j) column[group_points[j]] = 2 * int(j);
+    const int inner_column = 2 * int(group_points.size());
+    const int rows = 16 * int(member.size()), columns = inner_column + 8 * int(member.size());
+    std::vector<Eigen::Triplet<double>> J;
+    J.reserve(std::size_t(rows) * 3);
+    Eigen::VectorXd r(rows);
+    for (int m = 0; m < int(member.size()); ++m) {
+      const PairData& p = pairs[active[member[m]]];
+      for (int i = 0; i < 4; ++i)
+        for (int end = 0; end < 2; ++end) {
+          const int v = p.vertex[(i + end) % 4], w = p.vertex[(i + 1 - end) % 4];
+          const int three = p.neighbour[i], o = F(three, (p.c[i] + 2) % 3);
+          const double f = p.fg[i].x(), g = p.fg[i].y();
+          const double k = end == 0 ? 1.0 + g / 3.0 : -(1.0 + f + 2.0 * g / 3.0);
+          const Vector3& V = macro[three][corner(local_corner(F, three, v))];
+          const Vector3& K = edge_point(macro, F, three, v, w);
+          const Vector3& O = edge_point(macro, F, three, v, o);
+          const int row = 16 * m + 4 * i + 2 * end;
+          const int K_column = column[point_of.at(directed(v, w))], O_point = other_point(p, i, end);
+          const int L_column = inner_column + 8 * m + 2 * ((i + end) % 4);
+          for (int t = 0; t < 2; ++t) {
+            J.emplace_back(row + t, K_column + t, k);
+            J.emplace_back(row + t, L_column + t, f);
+            if (O_point >= 0) J.emplace_back(row + t, column[O_point] + t, g / 3.0);
+          }
+          r.segment<2>(row) =
+              -tangent(v).transpose() * (k * (K - V) + f * (p.inner[(i + end) % 4] - V) + g / 3.0 * (O - V));
+        }
+    }
+    Eigen::SparseMatrix<double> A(rows, columns);
+    A.setFromTriplets(J.begin(), J.end());
+    const Eigen::SparseMatrix<double> normal = A * A.transpose();
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);
+    Eigen::VectorXd delta;
+    bool solved = ldlt.info() == Eigen::Success;
+    if (solved) {
+      delta = A.transpose() * ldlt.solve(r);
+      delta += A.transpose() * ldlt.solve(r - A * delta);  // refined once
+      solved = delta.allFinite() && (A * delta - r).norm() <= 1e-9 * r.norm() + 1e-300;
+    }
+    if (!solved) {
+      for (const int a : member) dependent.push_back(active[a]);
+      continue;
+    }
+    // The moved points, written to both faces that hold each, and Step 3.
+    std::vector<int> touched;
+    for (std::size_t j = 0; j < group_points.size(); ++j) {
+      const EdgePoint& e = points[group_points[j]];
+      const Vector3 K = edge_point(macro, F, e.three, e.v, e.w) + tangent(e.v) * delta.segment<2>(2 * int(j));
+      const int l = local_corner(F, e.three, e.v), across = edges.neighbour(e.three, F(e.three, (l + 1) % 3) == e.w ? l : (l + 2) % 3);
+      for (const int face : {e.three, across}) {
+        edge_point(macro, F, face, e.v, e.w) = K;
+        touched.push_back(face);
+      }
+    }
+    for (int m = 0; m < int(member.size()); ++m) {
+      PairData& p = pairs[active[member[m]]];
+      for (int v = 0; v < 4; ++v) p.inner[v] += tangent(p.vertex[v]) * delta.segment<2>(inner_column + 8 * m + 2 * v);
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const int face : touched) set_centre_point(macro[face]);
+  }
+  return dependent;
 }
 
 // Step 5 of §9.7. Unknowns, one row each.
@@ -312,11 +416,10 @@ std::vector<TwoSplitPair> two_split_pairs(const Eigen::MatrixX3d& V, const Eigen
     if (angle < min_angle) thin.emplace_back(angle, f);
   }
   std::sort(thin.begin(), thin.end());
-  // open: may be paired; three: an outer neighbour of a pair; blocked: next to
-  // such a neighbour (the ratio conditions of one pair move the Step-2 points
-  // of its outer edges, on which a neighbour's subdivided points depend, so no
-  // three-split triangle may border two pairs).
-  enum State : std::uint8_t { open, paired, three, blocked };
+  // open: may be paired; three: an outer neighbour of a pair (three-split,
+  // and it may border further pairs: their ratio conditions are solved
+  // together).
+  enum State : std::uint8_t { open, paired, three };
   std::vector<State> state(F.rows(), open);
   std::vector<TwoSplitPair> pairs;
   for (const auto& [angle, f] : thin) {
@@ -328,23 +431,13 @@ std::vector<TwoSplitPair> two_split_pairs(const Eigen::MatrixX3d& V, const Eigen
         longest = e;
     const int g = edges.neighbour(f, longest), d = edges.neighbour_edge(f, longest);
     if (g == f || state[g] != open) continue;
-    // Its four outer neighbours: distinct, and not next to another pair.
+    // Its four outer neighbours: three-split (not in a pair, nor the pair).
     const std::array<int, 4> outer{edges.neighbour(f, (longest + 1) % 3), edges.neighbour(f, (longest + 2) % 3),
                                    edges.neighbour(g, (d + 1) % 3), edges.neighbour(g, (d + 2) % 3)};
-    const auto unfit = [&](int n) {
-      if (n == f || n == g || state[n] == paired) return true;
-      for (int k = 0; k < 3; ++k) {
-        const int m = edges.neighbour(n, k);
-        if (m != f && m != g && state[m] == paired) return true;
-      }
-      return false;
-    };
-    if (std::any_of(outer.begin(), outer.end(), unfit)) continue;
+    if (std::any_of(outer.begin(), outer.end(), [&](int n) { return n == f || n == g || state[n] == paired; }))
+      continue;
     state[f] = state[g] = paired;
     for (const int n : outer) state[n] = three;
-    for (const int n : outer)
-      for (int k = 0; k < 3; ++k)
-        if (state[edges.neighbour(n, k)] == open) state[edges.neighbour(n, k)] = blocked;
     pairs.push_back({f, longest});
   }
   return pairs;
@@ -352,19 +445,8 @@ std::vector<TwoSplitPair> two_split_pairs(const Eigen::MatrixX3d& V, const Eigen
 
 BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, const std::vector<TwoSplitPair>& pairs,
-                        const ThreeSplitOptions& options) {
-  std::vector<CubicTriangle> macro = macro_patches(V, F, N, options.tension);
-  // Per pair, before any subdivision (it moves Step-2 points of the outer
-  // edges): the ratio conditions, on copies of the six macro patches. The
-  // cycle of vertices A, C, B, D and the outer edges A → C, C → B, B → D,
-  // D → A as the neighbours run them. A pair whose result would violate the
-  // G¹ orientation at an end of an inner edge is left to the three-split.
-  struct PairData {
-    int f, e, g, d;
-    std::array<int, 4> neighbour, c;
-    std::array<Vector3, 4> inner;
-    std::array<Eigen::Vector2d, 4> fg;
-  };
+                        const ThreeSplitOptions& options, TwoSplitCounts* counts) {
+  const std::vector<CubicTriangle> subdivided = macro_patches(V, F, N, options.tension);
   const auto split_pair = [](const CubicTriangle& Pm, const CubicTriangle& Qm, const PairData& p,
                              const std::array<CubicTriangle*, 4>& micro) {
     // Step 4: P = (A, B, C) and Q = (B, A, D) split at Z = P(½, ½, 0) = Q(½, ½, 0).
@@ -381,8 +463,10 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     (*micro[1])[next_to(1, 0)] = (*micro[2])[next_to(0, 1)] = p.inner[2];  // K_B
     (*micro[2])[next_to(2, 1)] = (*micro[3])[next_to(2, 0)] = p.inner[3];  // W_D
   };
-  std::vector<PairData> data;
-  data.reserve(pairs.size());
+  // The candidates with their subdivided inner points and fitted (f, g),
+  // from the macro patches of Steps 1–3.
+  std::vector<PairData> candidates;
+  candidates.reserve(pairs.size());
   for (const TwoSplitPair& pair : pairs) {
     PairData p;
     p.f = pair.face;
@@ -390,31 +474,54 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     p.g = edges.neighbour(p.f, p.e);
     p.d = edges.neighbour_edge(p.f, p.e);
     const int local_edge[4][2] = {{p.f, (p.e + 2) % 3}, {p.f, (p.e + 1) % 3}, {p.g, (p.d + 2) % 3}, {p.g, (p.d + 1) % 3}};
-    std::array<CubicTriangle, 6> m;
     for (int i = 0; i < 4; ++i) {
       p.neighbour[i] = edges.neighbour(local_edge[i][0], local_edge[i][1]);
       p.c[i] = edges.neighbour_edge(local_edge[i][0], local_edge[i][1]);
-      m[i] = macro[p.neighbour[i]];
     }
-    m[4] = macro[p.f];
-    m[5] = macro[p.g];
     const int A = p.e, B = (p.e + 1) % 3, C = (p.e + 2) % 3, D = (p.d + 2) % 3;
+    p.vertex = {F(p.f, A), F(p.f, C), F(p.f, B), F(p.g, D)};
+    const CubicTriangle &Pm = subdivided[p.f], &Qm = subdivided[p.g];
     // As subdivided at Z: P[A, A, Z] = (A + K_AB)/2, P[C, C, Z] = (K_CA + K_CB)/2.
-    p.inner = {(m[4][corner(A)] + m[4][next_to(A, B)]) / 2.0, (m[4][next_to(C, A)] + m[4][next_to(C, B)]) / 2.0,
-               (m[4][corner(B)] + m[4][next_to(B, A)]) / 2.0,
-               (m[5][next_to(D, p.d)] + m[5][next_to(D, (p.d + 1) % 3)]) / 2.0};
-    const std::array<Vector3, 4> normal{N.row(F(p.f, A)), N.row(F(p.f, C)), N.row(F(p.f, B)), N.row(F(p.g, D))};
-    if (!meet_ratio_conditions({&m[0], &m[1], &m[2], &m[3]}, p.c, {&m[4], &m[5]}, p.inner, normal, p.fg)) continue;
-    std::array<CubicTriangle, 4> micro;
-    split_pair(m[4], m[5], p, {&micro[0], &micro[1], &micro[2], &micro[3]});
-    if (!PairStar(micro[0], micro[1], micro[2], micro[3]).oriented()) continue;
-    for (int i = 0; i < 4; ++i) macro[p.neighbour[i]] = m[i];
-    macro[p.f] = m[4];
-    macro[p.g] = m[5];
-    data.push_back(p);
+    p.inner = {(Pm[corner(A)] + Pm[next_to(A, B)]) / 2.0, (Pm[next_to(C, A)] + Pm[next_to(C, B)]) / 2.0,
+               (Pm[corner(B)] + Pm[next_to(B, A)]) / 2.0, (Qm[next_to(D, p.d)] + Qm[next_to(D, (p.d + 1) % 3)]) / 2.0};
+    if (fit_outer_coefficients(p, subdivided)) candidates.push_back(p);
+  }
+  // The ratio conditions of all pairs together, then the G¹ orientation of
+  // each pair's inner edges; a pair that fails it (or whose group's ratio
+  // system is dependent) is left to the three-split, and the others are
+  // solved again without it.
+  std::vector<int> active(candidates.size());
+  for (int k = 0; k < int(active.size()); ++k) active[k] = k;
+  std::vector<CubicTriangle> macro;
+  std::vector<PairData> data;
+  for (;;) {
+    macro = subdivided;
+    data = candidates;
+    std::vector<int> dropped = meet_ratio_conditions(data, active, macro, F, N, edges);
+    for (const int k : active) {
+      if (std::find(dropped.begin(), dropped.end(), k) != dropped.end()) continue;
+      std::array<CubicTriangle, 4> micro;
+      split_pair(macro[data[k].f], macro[data[k].g], data[k], {&micro[0], &micro[1], &micro[2], &micro[3]});
+      if (!PairStar(micro[0], micro[1], micro[2], micro[3]).oriented()) dropped.push_back(k);
+    }
+    if (dropped.empty()) break;
+    std::sort(dropped.begin(), dropped.end());
+    std::vector<int> kept;
+    std::set_difference(active.begin(), active.end(), dropped.begin(), dropped.end(), std::back_inserter(kept));
+    active = std::move(kept);
   }
   std::vector<bool> in_pair(F.rows(), false);
-  for (const PairData& p : data) in_pair[p.f] = in_pair[p.g] = true;
+  std::vector<int> borders(F.rows(), 0);  // pairs a three-split triangle borders
+  for (const int k : active) {
+    in_pair[data[k].f] = in_pair[data[k].g] = true;
+    for (const int n : data[k].neighbour) ++borders[n];
+  }
+  if (counts) {
+    counts->pairs = active.size();
+    counts->adjacent_pairs = std::count_if(active.begin(), active.end(), [&](int k) {
+      return std::any_of(data[k].neighbour.begin(), data[k].neighbour.end(), [&](int n) { return borders[n] > 1; });
+    });
+  }
   std::vector<int> first(F.rows() + 1, 0);
   for (int f = 0; f < F.rows(); ++f) first[f + 1] = first[f] + (in_pair[f] ? 2 : 3);
   BezierSurface surface;
@@ -425,7 +532,8 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     for (int j = first[f]; j < first[f + 1]; ++j) surface.macro[j] = f;
     if (!in_pair[f]) split_in_three(macro[f], &P[first[f]]);
   }
-  for (const PairData& p : data) {
+  for (const int k : active) {
+    const PairData& p = data[k];
     const std::array<CubicTriangle*, 4> micro{&P[first[p.f]], &P[first[p.f] + 1], &P[first[p.g]], &P[first[p.g] + 1]};
     split_pair(macro[p.f], macro[p.g], p, micro);
     if (!PairStar(*micro[0], *micro[1], *micro[2], *micro[3]).solve(*micro[0], *micro[1], *micro[2], *micro[3]))

@@ -23,9 +23,12 @@ struct TwoSplitPair {
 
 /// The pairs chosen adaptively: every macro triangle whose smallest angle is
 /// below min_angle_degrees, thinnest first, is paired with its neighbour across
-/// its longest edge, provided neither is paired or next to a pair yet (§9.7:
-/// "it has been essential that the two two-split triangles have four
-/// three-split triangles as neighbors"). V #V by 3, F #F by 3, edges =
+/// its longest edge, provided neither is paired or an outer neighbour of a
+/// pair yet, and its four outer neighbours are in no pair (§9.7: "it has been
+/// essential that the two two-split triangles have four three-split triangles
+/// as neighbors"). A three-split triangle may border two or three pairs (the
+/// thesis: "it should be possible to achieve tangent plane continuity when two
+/// or three sides of a triangle are split"). V #V by 3, F #F by 3, edges =
 /// mesh_edges(F).
 std::vector<TwoSplitPair> two_split_pairs(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                                           const MeshEdges& edges, double min_angle_degrees);
@@ -52,11 +55,21 @@ std::vector<TwoSplitPair> two_split_pairs(const Eigen::MatrixX3d& V, const Eigen
 ///    relation fitted to the subdivided points);
 ///  - R1 of each outer edge from (9.7b) − (9.7a);
 ///  - the three-split triangles: Steps 5 and 6 of §9.6 on the other edges.
+/// Pairs next to each other — a three-split triangle bordering two or three
+/// pairs — are coupled through its Step-2 points (the O of one pair's ratio
+/// condition is a K of the other's) and their ratio conditions are solved
+/// together; each outer edge is still joined by (9.7b) − (9.7a) on its own
+/// micro triangle of the neighbour.
 /// A candidate whose inner edges would violate the G¹ orientation (f, g of
 /// opposite signs at an end) is left to the three-split. dependent_edges
 /// counts macro edges and pairs whose equations were dependent.
+/// counts (optional) receives the pairs built and how many of them are next
+/// to another pair.
+struct TwoSplitCounts {
+  std::size_t pairs = 0, adjacent_pairs = 0;
+};
 BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, const std::vector<TwoSplitPair>& pairs,
-                        const ThreeSplitOptions& options = {});
+                        const ThreeSplitOptions& options = {}, TwoSplitCounts* counts = nullptr);
 
 }  // namespace scanstation

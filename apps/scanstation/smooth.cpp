@@ -151,7 +151,9 @@ class SmoothCommand final : public Command {
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
     if (options.scheme == SplitScheme::adaptive_two_split)
-      std::printf("%zu macro triangle(s) two-split (%zu candidates below %g°)\n", smoothed.two_split_triangles,
+      std::printf("%zu macro triangle(s) two-split in %zu pair(s), %zu of them next to another pair (%zu candidates "
+                  "below %g°)\n",
+                  smoothed.two_split_triangles, smoothed.two_split_pairs, smoothed.adjacent_two_split_pairs,
                   smoothed.two_split_candidates, min_angle_);
     if (smoothed.sign_condition_violations > 0 || surface.dependent_edges > 0)
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "

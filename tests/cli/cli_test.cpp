@@ -393,6 +393,8 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   const nlohmann::json two = nlohmann::json::parse(slurp(dir / "t.report.json"))["result"];
   EXPECT_LT(two["g1"]["max_normal_angle"].get<double>(), 1e-8);
   EXPECT_GT(two["two_split_triangles"].get<int>(), 0);
+  EXPECT_EQ(two["two_split_triangles"].get<int>(), 2 * two["two_split_pairs"].get<int>());
+  EXPECT_GT(two["adjacent_two_split_pairs"].get<int>(), 0);  // eight at 40°: 108 of 108
   const nlohmann::json two_patches = nlohmann::json::parse(slurp(dir / "t.json"));
   std::set<int> splits;
   for (const nlohmann::json& patch : two_patches["patches"]) splits.insert(patch["split"].get<int>());
