@@ -1,5 +1,6 @@
 #include "smoothing/six_split.h"
 
+#include "smoothing/damped_least_squares.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
@@ -210,29 +211,6 @@ Constraints step5_constraints(double phi, double psi, const HalfEdge& a, const H
   half_edge_rows(4, a, Ya, Xa, Xa_there);
   half_edge_rows(6, b, Yb, Xb, Xb_there);
   return A;
-}
-
-// The damped least-squares step min |Aδ − r|² + τ|δ|² whose largest point
-// move is `reach` (bisection on log τ): the constraints met as far as a
-// bounded move allows.
-Points damped_step(const Constraints& A, const Eigen::Matrix<double, 8, 3>& r, double reach) {
-  using Square = Eigen::Matrix<double, unknowns, unknowns>;
-  const Square normal = A.transpose() * A;
-  const Points projected = A.transpose() * r;
-  const double scale = normal.diagonal().maxCoeff();
-  double lo = std::log(1e-12 * scale), hi = std::log(1e6 * scale);
-  Points step = Points::Zero();
-  for (int iteration = 0; iteration < 48; ++iteration) {
-    const double mid = (lo + hi) / 2.0;
-    const Points trial = (normal + std::exp(mid) * Square::Identity()).ldlt().solve(projected);
-    if (trial.rowwise().norm().maxCoeff() <= reach) {
-      step = trial;
-      hi = mid;
-    } else {
-      lo = mid;
-    }
-  }
-  return step;
 }
 
 // The closest point of the well-posed part of all eight constraints

@@ -545,7 +545,8 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     for (int e = 0; e < 3; ++e) {
       const int g = edges.neighbour(f, e);
       if (f < g && !in_pair[g] &&
-          !join_three_split_edge(P[first[f] + e], P[first[g] + edges.neighbour_edge(f, e)], options.least_squares_ratio))
+          !join_three_split_edge(P[first[f] + e], P[first[g] + edges.neighbour_edge(f, e)], options.least_squares_ratio,
+                                 options.max_move))
         ++surface.dependent_edges;
     }
   }
