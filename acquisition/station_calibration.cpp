@@ -1,6 +1,7 @@
 #include "acquisition/station_calibration.h"
 
 #include "acquisition/laser_plane_calibration.h"
+#include "acquisition/stereo_reconstruction.h"
 #include "acquisition/turntable_axis_calibration.h"
 #include "core/errors.h"
 #include "core/io/station_geometry_json.h"
@@ -156,12 +157,34 @@ LaserPart laser_part(const Fields& f) {
   return part;
 }
 
+json matrix_rows(const cv::Mat& m) {
+  json rows = json::array();
+  for (int r = 0; r < m.rows; ++r) {
+    json row = json::array();
+    for (int c = 0; c < m.cols; ++c) row.push_back(m.at<double>(r, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 json stereo_json(const StereoPart& part) {
   json per_view = json::array();
   for (const auto& v : part.per_view_rms) per_view.push_back({v[0], v[1]});
+  // The rectification the scan uses (cv::stereoRectify of the two cameras),
+  // written out for other programs; reading ignores it and derives it again.
+  const auto [left, right] = stereo_cameras(part);
+  const StereoCalibration rectified = stereo_station(left, right).calibration;
   json out = {{"date", part.date}, {"pairs", part.pairs}, {"left", to_json(part.left)}, {"right", to_json(part.right)},
               {"pose", part.turntable ? "station" : "camera"},
-              {"residuals", {{"rms_px", part.rms}, {"per_view_rms_px", per_view}}}};
+              {"residuals", {{"rms_px", part.rms}, {"per_view_rms_px", per_view}}},
+              {"rectification",
+               {{"derived", "cv::stereoRectify of left and right, principal points kept, alpha 0: what the scan uses; "
+                            "reading derives it again"},
+                {"R1", matrix_rows(rectified.r1)},
+                {"R2", matrix_rows(rectified.r2)},
+                {"P1", matrix_rows(rectified.p1)},
+                {"P2", matrix_rows(rectified.p2)},
+                {"Q", matrix_rows(rectified.q)}}}};
   if (part.turntable) out["turntable"] = turntable_json(*part.turntable);
   return out;
 }

@@ -57,24 +57,30 @@ SimulatedRig simulated_rig(CommandContext& context, const ScanJob& job, const st
   return rig;
 }
 
-SessionRecorder create_session(CommandContext& context, const ScanJob& job, const SimulatedRig& rig) {
+// `rig`: the simulated rig, or none on a station with a real camera, whose
+// geometry can only come from a calibration file and whose object is
+// whatever stands on the platter (named by --object, in the platter's frame).
+SessionRecorder create_session(CommandContext& context, const ScanJob& job, const SimulatedRig* rig) {
   acquisition::SessionManifest manifest;
   manifest.rig = job.rig;
   manifest.steps = job.steps;
   manifest.station = acquisition::station_json(job.station);
-  manifest.station["sim_seed"] = job.seed;
-  manifest.geometry =
-      rig.stereo ? acquisition::scan_geometry(job.calibration, job.station,
-                                              acquisition::simulator_truth(rig.stereo->rig.left, {}, rig.stereo->rig.right),
-                                              job.calibration_max_age, acquisition::CalibrationNeed::stereo_pose)
-                 : acquisition::scan_geometry(job.calibration, job.station,
-                                              acquisition::simulator_truth(rig.laser->rig.camera,
-                                                                           sim::light_planes(rig.laser->rig)),
-                                              job.calibration_max_age);
+  if (rig) manifest.station["sim_seed"] = job.seed;
+  const bool stereo = job.rig == "stereo";
+  std::optional<acquisition::TurntableGeometry> truth;
+  if (rig && rig->stereo) truth = acquisition::simulator_truth(rig->stereo->rig.left, {}, rig->stereo->rig.right);
+  if (rig && rig->laser) truth = acquisition::simulator_truth(rig->laser->rig.camera, sim::light_planes(rig->laser->rig));
+  manifest.geometry = acquisition::scan_geometry(
+      job.calibration, job.station, truth, job.calibration_max_age,
+      stereo ? acquisition::CalibrationNeed::stereo_pose : acquisition::CalibrationNeed::lasers);
   manifest.parameters = job.parameters;
   manifest.stereo_parameters = job.stereo_parameters;
-  const sim::ScanObject& object = rig.object();
-  manifest.object = {job.object, object.mesh_file, {object.scale, object.translation}};
+  if (rig) {
+    const sim::ScanObject& object = rig->object();
+    manifest.object = {job.object, object.mesh_file, {object.scale, object.translation}};
+  } else {
+    manifest.object = {job.object_given ? job.object : "object", "", {}};
+  }
   manifest.software_version = kVersion;
   return SessionRecorder::create(job.folder, manifest, context.overwrite);
 }
@@ -137,15 +143,16 @@ Capture record_on_devices(CommandContext& context, const ScanJob& job, SessionRe
 
 // Records the steps the session lacks with the rig's devices, each step's
 // points to `feed`.
-Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, const SimulatedRig& rig,
+Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& recorder, const SimulatedRig* rig,
                 const StepFeed& feed) {
   const drivers::StationDescription& d = job.station;
   const int stop_after = job.stop_after.value_or(0);
-  if (rig.stereo) {
+  if (recorder.manifest().rig == "stereo") {
     const unsigned roles = sim::camera_role | sim::right_camera_role | sim::turntable_role |
                            (d.projector ? sim::projector_role : 0u);
     return record_on_devices(
-        context, job, recorder, roles, rig.stereo->left_frames, rig.stereo->right_frames,
+        context, job, recorder, roles, rig ? rig->stereo->left_frames : sim::FrameSourceFactory{},
+        rig ? rig->stereo->right_frames : sim::FrameSourceFactory{},
         [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
           acquisition::StereoScanDevices devices{*station.camera,    *station.right_camera, station.projector.get(),
                                                  *station.turntable, *station.clock,        d.camera.timeout};
@@ -154,7 +161,8 @@ Capture capture(CommandContext& context, const ScanJob& job, SessionRecorder& re
         feed);
   }
   return record_on_devices(
-      context, job, recorder, sim::camera_role | sim::laser_role | sim::turntable_role, rig.laser->frames, {},
+      context, job, recorder, sim::camera_role | sim::laser_role | sim::turntable_role,
+      rig ? rig->laser->frames : sim::FrameSourceFactory{}, {},
       [&](sim::OpenStation& station, const auto& on_step, const auto& stop) {
         acquisition::TurntableScanDevices devices{*station.camera, {}, *station.turntable, *station.clock,
                                                   d.camera.timeout};
@@ -229,16 +237,18 @@ void print_results(const nlohmann::json& r) {
 
 void run_scan_job(CommandContext& context, const ScanJob& job) {
   const drivers::StationDescription& description = job.station;
-  if (description.camera.backend != "sim")
-    throw InvalidInput("scan: the scan drives simulated devices only (real stations are being wired); scan on "
-                       "the simulator with --backend sim");
   std::optional<SessionRecorder> recorder;
   if (job.resume) recorder.emplace(resume_session(context, job));
-  // A resumed scan simulates what the session recorded, with its noise seed.
-  const std::string object = recorder ? recorded_object(recorder->manifest()) : job.object;
-  const std::uint64_t seed = recorder ? recorder->manifest().station.value("sim_seed", job.seed) : job.seed;
-  const SimulatedRig rig = simulated_rig(context, job, recorder ? recorder->manifest().rig : job.rig, object, seed);
-  if (!recorder) recorder.emplace(create_session(context, job, rig));
+  // A simulated camera renders the simulated object; a real one sees what
+  // stands on the platter. A resumed scan simulates what the session
+  // recorded, with its noise seed.
+  std::optional<SimulatedRig> rig;
+  if (description.camera.backend == "sim") {
+    const std::string object = recorder ? recorded_object(recorder->manifest()) : job.object;
+    const std::uint64_t seed = recorder ? recorder->manifest().station.value("sim_seed", job.seed) : job.seed;
+    rig = simulated_rig(context, job, recorder ? recorder->manifest().rig : job.rig, object, seed);
+  }
+  if (!recorder) recorder.emplace(create_session(context, job, rig ? &*rig : nullptr));
   const acquisition::SessionManifest& manifest = recorder->manifest();
   for (const std::string& note : recorder->notes()) context.log->warn("{}", note);
 
@@ -258,7 +268,7 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
     acquisition::replay_session(acquisition::read_session(job.folder), replay);
   }
 
-  const Capture captured = capture(context, job, *recorder, rig, feed);
+  const Capture captured = capture(context, job, *recorder, rig ? &*rig : nullptr, feed);
   const acquisition::RecordingOutcome& outcome = captured.outcome;
 
   StageTimer process(context.report, "process");

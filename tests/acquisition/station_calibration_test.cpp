@@ -270,6 +270,12 @@ TEST(StationCalibrationFile, RoundTripPlacesTheCameraAndKeepsEveryPart) {
   EXPECT_NO_THROW(check_calibration_matches(back, description));
   EXPECT_NO_THROW(check_calibration_complete(back, CalibrationNeed::lasers, 2));
   EXPECT_NO_THROW(check_calibration_complete(back, CalibrationNeed::stereo));
+  // The stereo part lists its rectification: Q maps disparity to depth with
+  // the pair's baseline (Q(3,2) = −1/Tx; here 3.3 apart along x).
+  const nlohmann::json rectification = to_json(back)["stereo"]["rectification"];
+  ASSERT_EQ(rectification["Q"].size(), 4u);
+  EXPECT_NEAR(std::abs(1.0 / rectification["Q"][3][2].get<double>()), 3.3, 1e-9);
+  EXPECT_EQ(rectification["P2"][0].size(), 4u);
   test::expect_error<InvalidInput>([&] { check_calibration_complete(back, CalibrationNeed::lasers, 3); },
                                    {"calibration.json", "laser 2", "calibrate laser"});
 

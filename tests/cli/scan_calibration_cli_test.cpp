@@ -39,6 +39,28 @@ Outcome short_scan(const fs::path& station, const std::string& arguments, const 
                      " -o " + out.string());
 }
 
+// A station with a real camera scans only with its calibration: without one,
+// or with the simulator's truth, it is refused before anything is recorded
+// or any device opened (the camera named here does not exist).
+TEST(ScanWithCalibration, RealStationNeedsItsCalibrationFile) {
+  ScratchFolder dir;
+  const fs::path station = dir / "real.toml";
+  std::ofstream(station) << "name = \"bench\"\n[camera]\nbackend = \"v4l2\"\ndevice = \"/dev/video-absent\"\n"
+                         << "[[laser]]\nbackend = \"sim\"\n[turntable]\nbackend = \"sim\"\n";
+  const Outcome none = short_scan(station, "", dir / "a");
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_THAT(none.err, testing::HasSubstr("no calibration is given"));
+  EXPECT_THAT(none.err, testing::HasSubstr("scanstation calibrate camera"));
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  const Outcome truth = short_scan(station, "--calibration sim-truth", dir / "b");
+  EXPECT_EQ(truth.exit_code, 1);
+  EXPECT_THAT(truth.err, testing::HasSubstr("only a simulated station has a true geometry"));
+  const Outcome missing = short_scan(station, "--calibration " + (dir / "none.json").string(), dir / "c");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_THAT(missing.err, testing::HasSubstr("none.json does not exist"));
+  EXPECT_FALSE(fs::exists(dir / "c"));
+}
+
 // One test, so that the expensive part — calibrating a 640×480 station and
 // scanning the sphere at the default 36 steps — runs once under ctest.
 TEST(ScanWithCalibration, CalibratedSphereWithinTheBudgetAndBadCalibrationsRefused) {
