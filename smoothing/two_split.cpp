@@ -1,5 +1,6 @@
 #include "smoothing/two_split.h"
 
+#include "smoothing/damped_least_squares.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
@@ -342,8 +343,10 @@ class PairStar {
            std::all_of(edges_.begin(), edges_.end(), [](const LinearEdge& e) { return e.oriented(); });
   }
 
-  // Solves and writes the nine points; false when dependent.
-  bool solve(CubicTriangle& P1, CubicTriangle& P2, CubicTriangle& Q1, CubicTriangle& Q2) const {
+  // Solves and writes the nine points; false when dependent, or when the
+  // exact solution would move a point farther than max_move times the pair's
+  // mean diagonal (a bulge: then the bounded damped step, not G¹ there).
+  bool solve(CubicTriangle& P1, CubicTriangle& P2, CubicTriangle& Q1, CubicTriangle& Q2, double max_move) const {
     const double fC = fg_C_.x(), gC = fg_C_.y(), sC = 1.0 + fC + gC;
     System M = System::Zero();
     Points rhs = Points::Zero();
@@ -376,6 +379,11 @@ class PairStar {
       cod.setThreshold(1e-6);
       cod.compute(M);
       x = old_ + cod.solve(rhs - M * old_);
+    }
+    const double bound = max_move * reach_ / 200.0;  // reach_ is 100 × the sum of the diagonals
+    if ((x - old_).rowwise().norm().maxCoeff() > bound) {
+      x = old_ + damped_step(M, rhs - M * old_, bound);
+      met = false;
     }
     const Vector3 z = x.row(Z);
     P1[corner(1)] = P2[corner(0)] = Q1[corner(1)] = Q2[corner(0)] = z;
@@ -536,7 +544,8 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     const PairData& p = data[k];
     const std::array<CubicTriangle*, 4> micro{&P[first[p.f]], &P[first[p.f] + 1], &P[first[p.g]], &P[first[p.g] + 1]};
     split_pair(macro[p.f], macro[p.g], p, micro);
-    if (!PairStar(*micro[0], *micro[1], *micro[2], *micro[3]).solve(*micro[0], *micro[1], *micro[2], *micro[3]))
+    if (!PairStar(*micro[0], *micro[1], *micro[2], *micro[3])
+             .solve(*micro[0], *micro[1], *micro[2], *micro[3], options.max_move))
       ++surface.dependent_edges;
     for (int i = 0; i < 4; ++i) join_outer_edge({&P[first[p.neighbour[i]] + p.c[i]], p.fg[i]}, (*micro[i])[centre]);
   }
