@@ -7,6 +7,7 @@
 #include "smoothing/three_split.h"
 #include "smoothing/two_split.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -49,6 +50,10 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   } catch (const TopologyError& e) {
     throw InvalidInput(e.what());
   }
+  std::vector<char> in_a_face(static_cast<std::size_t>(V.rows()), 0);
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
+    for (int corner = 0; corner < 3; ++corner) in_a_face[static_cast<std::size_t>(mesh.faces(f, corner))] = 1;
+  result.isolated_vertices = static_cast<std::size_t>(std::count(in_a_face.begin(), in_a_face.end(), 0));
   result.adjusted_vertices = enforce_sign_condition(V, mesh.faces, N);
   result.sign_condition_violations = sign_condition_violations(V, mesh.faces, N).size();
   result.normals_seconds = seconds_since(start);
@@ -88,6 +93,7 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
       {"macro_triangles", macro_triangles},
       {"patches", s.surface.patches.size()},
       {"adjusted_vertices", s.adjusted_vertices},
+      {"isolated_vertices", s.isolated_vertices},
       {"sign_condition_violations", s.sign_condition_violations},
       {"dependent_edges", s.surface.dependent_edges},
       {"g1", {{"max_normal_angle", s.g1.max_normal_angle},

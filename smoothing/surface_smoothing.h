@@ -52,6 +52,7 @@ struct SurfaceSmoothingOptions {
 struct SurfaceSmoothing {
   BezierSurface surface;
   std::vector<int> adjusted_vertices;
+  std::size_t isolated_vertices = 0;  ///< vertices in no triangle: not on the surface, left out
   std::size_t sign_condition_violations = 0;
   std::size_t two_split_candidates = 0, two_split_triangles = 0;
   std::size_t two_split_pairs = 0, adjacent_two_split_pairs = 0;

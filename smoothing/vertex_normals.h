@@ -13,9 +13,10 @@ enum class NormalWeighting {
 };
 
 /// V #V by 3 positions, F #F by 3 counter-clockwise from outside.
-/// returns #V by 3 unit normals. Zero-area faces add nothing. Throws
-/// InvalidInput naming the first vertex whose weighted sum vanishes (no face,
-/// or faces that cancel).
+/// returns #V by 3 unit normals; zero for a vertex in no face (it is not on
+/// the surface, as the points constriction could not reach). Zero-area faces
+/// add nothing. Throws InvalidInput naming the first vertex of some face whose
+/// weighted sum vanishes (its faces have no area, or they cancel).
 Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                                 NormalWeighting weighting = NormalWeighting::area);
 

@@ -150,6 +150,8 @@ class SmoothCommand final : public Command {
                 "%zu normal(s) adjusted\n",
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
+    if (smoothed.isolated_vertices > 0)
+      std::printf("%zu vertex(es) in no triangle left out (not on the surface)\n", smoothed.isolated_vertices);
     if (options.scheme == SplitScheme::adaptive_two_split)
       std::printf("%zu macro triangle(s) two-split in %zu pair(s), %zu of them next to another pair (%zu candidates "
                   "below %g°)\n",

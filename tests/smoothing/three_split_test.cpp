@@ -1,9 +1,11 @@
 #include "smoothing/three_split.h"
 
+#include "core/errors.h"
 #include "core/mesh_topology.h"
 #include "smoothing/g1_verification.h"
 #include "smoothing/oscillation.h"
 #include "smoothing/sign_condition.h"
+#include "smoothing/surface_smoothing.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/vertex_normals.h"
 #include "smoothing_test_meshes.h"
@@ -141,6 +143,35 @@ TEST(VertexNormals, WeightingsAgreeOnTheSphereAndDifferOnUnevenFaces) {
   const double area_z = vertex_normals(V, F, NormalWeighting::area)(0, 2);
   const double inverse_z = vertex_normals(V, F, NormalWeighting::inverse_area)(0, 2);
   EXPECT_GT(area_z, inverse_z);  // the big face (normal +z) dominates the area weighting
+}
+
+// A vertex in no face (a point constriction could not reach) is not on the
+// surface: it gets no normal and the smoothing leaves it out; a vertex whose
+// faces have no area still has no normal and is named.
+TEST(VertexNormals, VertexInNoFaceIsLeftOutAndAFlatOneIsNamed) {
+  const TriangleMesh plain = sim::icosphere(2);
+  TriangleMesh mesh = plain;
+  const Eigen::Index extra = mesh.vertex_count();
+  mesh.vertices.positions.conservativeResize(extra + 1, 3);
+  mesh.vertices.positions.row(extra) << 0.1, 0.2, 0.3;
+  const Eigen::MatrixX3d N = vertex_normals(mesh.vertices.positions, mesh.faces);
+  EXPECT_EQ(N.row(extra).norm(), 0.0);
+  EXPECT_NEAR(N.topRows(extra).rowwise().norm().minCoeff(), 1.0, 1e-12);
+  const SurfaceSmoothing smoothed = smooth_surface(mesh);
+  EXPECT_EQ(smoothed.isolated_vertices, 1u);
+  const BezierSurface without = smooth_surface(plain).surface;  // the same surface, bit for bit
+  ASSERT_EQ(smoothed.surface.patches.size(), without.patches.size());
+  for (std::size_t p = 0; p < without.patches.size(); ++p)
+    for (int k = 0; k < 10; ++k) EXPECT_EQ(smoothed.surface.patches[p][k], without.patches[p][k]);
+
+  Eigen::MatrixX3d V(3, 3);
+  V << 0, 0, 0, 1, 0, 0, 2, 0, 0;  // one face on a line
+  try {
+    vertex_normals(V, Eigen::MatrixX3i{{0, 1, 2}});
+    FAIL() << "a vertex whose faces have no area has no normal";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 0"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
