@@ -38,8 +38,10 @@ struct UninitialisedAllocator : std::allocator<T> {
 /// macro    for each patch, the index of the input (macro) triangle it splits
 /// dependent_edges  macro edges where the scheme's equations for the
 ///          cross-edge control points were dependent (e.g. Equation (9.4) on
-///          an edge whose two ends look alike, as on a regular icosahedron):
-///          the closest solution was taken and the edge need not be G¹
+///          an edge whose two ends look alike, as on a regular icosahedron)
+///          or had no solution (an end whose tangent plane condition (9.3a)
+///          cannot hold, see end_fits): the closest solution was taken and
+///          the edge need not be G¹
 /// Adjacent patches share their common edge's four control points bit for bit.
 struct BezierSurface {
   std::vector<CubicTriangle, UninitialisedAllocator<CubicTriangle>> patches;

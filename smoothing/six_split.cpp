@@ -162,12 +162,13 @@ struct EdgeSide {
 struct HalfEdge {
   double f0, g0, f1, g1;
   Point rhs_b, rhs_c;
+  bool end_fits;  // (9.3a) holds at V (see end_fits)
 };
 
 HalfEdge half_edge(const Point& V, const Point& K, const Point& N_here, const Point& N_there,
                    const Eigen::Vector2d& at_Z) {
   const Eigen::Vector2d c0 = end_coefficients(K - V, N_here - V, N_there - V);
-  HalfEdge h{c0.x(), c0.y(), at_Z.x(), at_Z.y(), {}, {}};
+  HalfEdge h{c0.x(), c0.y(), at_Z.x(), at_Z.y(), {}, {}, end_fits(K - V, N_here - V, N_there - V, c0)};
   h.rhs_b = -(K - V) + 2.0 * K - h.f1 * (N_here - V) - h.g1 * (N_there - V) + 2.0 * (h.f0 + h.g0) * K;
   h.rhs_c = 2.0 * (1.0 + h.f1 + h.g1) * K;
   return h;
@@ -411,7 +412,7 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, double max_mov
   }
   here = {x[Z], x[Ya], x[Yb], x[Yf], x[Xa], x[Xb]};
   there = {x[Z], x[Yb], x[Ya], x[Yg], x[Xb_there], x[Xa_there]};
-  return met;
+  return met && a.end_fits && b.end_fits;
 }
 
 // The six micro triangles of one macro triangle from its split and its three

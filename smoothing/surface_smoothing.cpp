@@ -1,6 +1,7 @@
 #include "smoothing/surface_smoothing.h"
 
 #include "core/errors.h"
+#include "smoothing/cross_edge_directions.h"
 #include "smoothing/mesh_edges.h"
 #include "smoothing/sign_condition.h"
 #include "smoothing/six_split.h"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 
 namespace scanstation {
@@ -55,6 +57,15 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
     for (int corner = 0; corner < 3; ++corner) in_a_face[static_cast<std::size_t>(mesh.faces(f, corner))] = 1;
   result.isolated_vertices = static_cast<std::size_t>(std::count(in_a_face.begin(), in_a_face.end(), 0));
   result.adjusted_vertices = enforce_sign_condition(V, mesh.faces, N);
+  if (options.scheme != SplitScheme::adaptive_two_split) {  // its pairs fall back to the three-split instead
+    const std::vector<int> separated = separate_cross_edge_directions(
+        V, mesh.faces, edges,
+        options.scheme == SplitScheme::six_split ? CrossEdgePoints::step_zero : CrossEdgePoints::step_two, N);
+    std::vector<int> merged;
+    std::set_union(result.adjusted_vertices.begin(), result.adjusted_vertices.end(), separated.begin(),
+                   separated.end(), std::back_inserter(merged));
+    result.adjusted_vertices = std::move(merged);
+  }
   result.sign_condition_violations = sign_condition_violations(V, mesh.faces, N).size();
   result.normals_seconds = seconds_since(start);
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <Eigen/Geometry>
 
 namespace scanstation {
@@ -24,6 +25,16 @@ inline Eigen::Vector2d end_coefficients(const Eigen::Vector3d& along, const Eige
   // and the verification reports it.
   const double scale = ll + rr;
   return scale > 0.0 ? Eigen::Vector2d(-la / scale, -ra / scale) : Eigen::Vector2d::Zero();
+}
+
+/// Whether `c` (from end_coefficients) meets the condition: it cannot when
+/// left ∥ right and `along` is off their line (as at a vertex of a cube whose
+/// cross-edge points line up by symmetry): no tangent plane holds the end,
+/// and the edge is not G¹ there whatever the scheme does inside it.
+inline bool end_fits(const Eigen::Vector3d& along, const Eigen::Vector3d& left, const Eigen::Vector3d& right,
+                     const Eigen::Vector2d& c) {
+  const double scale = along.norm() + std::abs(c.x()) * left.norm() + std::abs(c.y()) * right.norm();
+  return (along + c.x() * left + c.y() * right).norm() <= 1e-9 * scale;
 }
 
 }  // namespace scanstation

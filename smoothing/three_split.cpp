@@ -55,6 +55,7 @@ bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_square
   const Eigen::Vector3d R0 = Q[W_second], R2 = Q[W_first];
   const Eigen::Vector2d c0 = end_coefficients(M1 - M0, L0 - M0, R0 - M0);  // Eq. (9.3a), e0 = 1
   const Eigen::Vector2d c1 = end_coefficients(M3 - M2, L2 - M2, R2 - M2);  // Eq. (9.3d), e1 = 1
+  const bool ends_fit = end_fits(M1 - M0, L0 - M0, R0 - M0, c0) && end_fits(M3 - M2, L2 - M2, R2 - M2, c1);
   const double f0 = c0.x(), g0 = c0.y(), f1 = c1.x(), g1 = c1.y();
   // Equation (9.4) for x = (L1 − M1, R1 − M1), with (e1, f1, g1) scaled by λ:
   //   2f0 x_L + 2g0 x_R = −2(M2 − M1) − λ α
@@ -89,7 +90,7 @@ bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_square
   if (bulges) solution = old + damped_step(A, rhs - A * old, reach);
   P[X] = M1 + solution.row(0).transpose();
   Q[X] = M1 + solution.row(1).transpose();
-  return independent && !bulges;
+  return independent && !bulges && ends_fit;
 }
 
 // Step 6 inside one macro triangle.

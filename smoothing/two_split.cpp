@@ -270,7 +270,10 @@ struct LinearEdge {
         at_V(end_coefficients(K_ - V_, L0_ - V_, R0_ - V_)), at_Z(at_Z_) {}
 
   // The G¹ orientation (§9.6): L and R on opposite sides at both ends.
-  bool oriented() const { return at_V.x() < 0.0 && at_V.y() < 0.0 && at_Z[0] > 0.0 && at_Z[1] < 0.0 && at_Z[2] < 0.0; }
+  bool oriented() const {
+    return at_V.x() < 0.0 && at_V.y() < 0.0 && at_Z[0] > 0.0 && at_Z[1] < 0.0 && at_Z[2] < 0.0 &&
+           end_fits(K - V, L0 - V, R0 - V, at_V);
+  }
 
   void rows(System& A, Points& rhs, int row) const {
     const double f0 = at_V.x(), g0 = at_V.y(), e1 = at_Z[0], f1 = at_Z[1], g1 = at_Z[2];

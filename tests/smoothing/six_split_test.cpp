@@ -1,9 +1,11 @@
 #include "smoothing/six_split.h"
 
 #include "core/mesh_topology.h"
+#include "smoothing/cross_edge_directions.h"
 #include "smoothing/g1_verification.h"
 #include "smoothing/oscillation.h"
 #include "smoothing/sign_condition.h"
+#include "smoothing/surface_smoothing.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/three_split.h"
 #include "smoothing/vertex_normals.h"
@@ -118,6 +120,29 @@ TEST(SixSplit, TensionKeepsG1) {
                   .max_normal_angle,
               1e-8)
         << tension;
+}
+
+// A cube split into triangles (CGAL's cube_quad.off): by symmetry the two
+// Step-0 points at four macro edge ends line up with the vertex, Equation
+// (9.3a) has no solution there and those edges are counted, not G¹; with the
+// normals tilted apart (separate_cross_edge_directions) every edge is G¹.
+TEST(SixSplit, CubeCornersGetNormalsThatKeepTheCrossEdgePointsApart) {
+  const TriangleMesh cube = test::real_mesh("cube_quad.off");
+  const auto& V = cube.vertices.positions;
+  Eigen::MatrixX3d N = vertex_normals(V, cube.faces);
+  const MeshEdges edges = mesh_edges(cube.faces);
+  const BezierSurface before = six_split(V, cube.faces, N, edges);
+  EXPECT_GT(before.dependent_edges, 0u);
+  EXPECT_GT(verify_g1(before).max_normal_angle, 0.1);
+
+  const std::vector<int> adjusted = separate_cross_edge_directions(V, cube.faces, edges, CrossEdgePoints::step_zero, N);
+  EXPECT_FALSE(adjusted.empty());
+  EXPECT_TRUE(sign_condition_violations(V, cube.faces, N).empty());
+  EXPECT_TRUE(separate_cross_edge_directions(V, cube.faces, edges, CrossEdgePoints::step_zero, N).empty());
+  const BezierSurface after = six_split(V, cube.faces, N, edges);
+  EXPECT_EQ(after.dependent_edges, 0u);
+  EXPECT_LT(verify_g1(after).max_normal_angle, 1e-8);
+  EXPECT_EQ(smooth_surface(cube).adjusted_vertices, adjusted);  // the command does the same
 }
 
 }  // namespace
