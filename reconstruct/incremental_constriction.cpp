@@ -46,6 +46,10 @@ using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pa
 // boundary; rings of kept cells released when the local constriction locks.
 constexpr int kFillRounds = 200;
 constexpr int kUnfreezeRings = 2;
+// Layers of cells sharing a face with a scan front's margin rings, re-opened
+// after the rings: a thinner skin than a third ring of whole stars (measured
+// in docs/design.md, incremental constriction).
+constexpr int kSkinLayers = 2;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
 // = Σ_v (1 − f(v)/6), f(v) the triangles at v (E = 3F/2): six times a
@@ -93,7 +97,7 @@ struct LocalComplex {
 struct IncrementalConstriction::State {
   ReconstructionOptions options;
   ConstrictionOptions constriction;
-  int margin = 3;
+  int margin = 2;
   Delaunay dt;
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches
@@ -106,6 +110,7 @@ struct IncrementalConstriction::State {
   std::vector<int> local_vertex;        // scratch: a point's number in a LocalComplex, else −1
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
+  std::vector<int> fill_vertex;         // scratch: a point's number in FillParts, else −1
   Eigen::Index received = 0, duplicates = 0;
   std::size_t pending_count = 0, wider = 0;
   Vertex hint;
@@ -229,14 +234,17 @@ struct IncrementalConstriction::State {
 
   // Fills the pockets the fill enclosed: components of removed cells next to
   // the region that reach neither the outside of the hull nor more cells than
-  // the region has (beyond that they count as outside). Returns whether it
+  // the region has (beyond that they count as outside). Only the cells
+  // region[from, end) are looked around: a component of removed cells is
+  // split (and a part of it enclosed) only by filling cells next to it, and
+  // the cells filled before were looked around already. Returns whether it
   // found any.
-  bool fill_pockets(std::vector<Cell>& region) {
+  bool fill_pockets(std::vector<Cell>& region, std::size_t from) {
     const std::size_t budget = 4 * region.size() + 256;
     std::vector<Cell> component, seen;
     bool found = false;
     const std::size_t size = region.size();
-    for (std::size_t r = 0; r < size; ++r)
+    for (std::size_t r = from; r < size; ++r)
       for (int i = 0; i < 4; ++i) {
         const Cell start = region[r]->neighbor(i);
         if (dt.is_infinite(start) || start->info().kept || start->info().local >= 0) continue;
@@ -299,22 +307,58 @@ struct IncrementalConstriction::State {
     return p;
   }
 
+  // The connected parts of the fill (joined through shared points), kept up
+  // to date as the fill grows: a union-find over its points, which only
+  // ever merges, so each round adds the cells filled since the last one
+  // instead of walking the whole fill again.
+  struct FillParts {
+    std::vector<Vertex> vertices;  // in the order of their first cells in the fill
+    std::vector<int> parent;
+    std::size_t cells = 0;         // region[0, cells) are in
+    int find(int a) {
+      while (parent[static_cast<std::size_t>(a)] != a)
+        a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      return a;
+    }
+  };
+  int fill_number(FillParts& p, Vertex v) {
+    int& id = fill_vertex[static_cast<std::size_t>(v->info())];
+    if (id < 0) {
+      id = static_cast<int>(p.vertices.size());
+      p.vertices.push_back(v);
+      p.parent.push_back(id);
+    }
+    return id;
+  }
+  void add_cells(FillParts& p, const std::vector<Cell>& region) {
+    for (; p.cells < region.size(); ++p.cells) {
+      const Cell c = region[p.cells];
+      const int a = p.find(fill_number(p, c->vertex(0)));
+      for (int k = 1; k < 4; ++k) p.parent[static_cast<std::size_t>(p.find(fill_number(p, c->vertex(k))))] = a;
+    }
+  }
+  void forget(const FillParts& p) {
+    for (const Vertex v : p.vertices) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
+  }
+
   // The Euler characteristic's change (in sixths, see euler_share) per
   // connected part of the fill: the boundary triangles at a point change
   // only with the cells around it, so each part changes χ as if it were
   // filled alone, and a handle in one part is found (and repaired) there,
   // not in the whole fill. Returns the points of the parts whose change is
   // not 0 (f_now holds f(v) at every point of the fill).
-  std::vector<Vertex> handle_parts(const std::vector<Cell>& region) {
-    const Parts p = parts_of(region);
-    std::vector<int> change(static_cast<std::size_t>(p.count), 0);
+  std::vector<Vertex> handle_parts(const std::vector<Cell>& region, FillParts& p) {
+    add_cells(p, region);
+    std::vector<int> change(p.vertices.size(), 0);  // per root
+    std::vector<int> root(p.vertices.size());
     for (std::size_t k = 0; k < p.vertices.size(); ++k) {
       const auto id = static_cast<std::size_t>(p.vertices[k]->info());
-      change[static_cast<std::size_t>(p.of_vertex[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
+      root[k] = p.find(static_cast<int>(k));
+      change[static_cast<std::size_t>(root[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
     }
     std::vector<Vertex> out;
     for (std::size_t k = 0; k < p.vertices.size(); ++k)
-      if (change[static_cast<std::size_t>(p.of_vertex[k])] != 0) out.push_back(p.vertices[k]);
+      if (change[static_cast<std::size_t>(root[k])] != 0) out.push_back(p.vertices[k]);
     return out;
   }
 
@@ -324,8 +368,9 @@ struct IncrementalConstriction::State {
   // raises it). Where the fill pinched the boundary at a point, the removed
   // cells around that point are filled too; where a part of the fill changed
   // the Euler characteristic, those around every point of that part. Returns
-  // false when that does not settle within a few rounds.
-  bool fill_to_ball(std::vector<Cell>& region) {
+  // false when that does not settle within a few rounds. `parts` ends as
+  // the connected parts of the fill.
+  bool fill_to_ball(std::vector<Cell>& region, FillParts& parts) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
     std::vector<Vertex> known;
@@ -338,7 +383,7 @@ struct IncrementalConstriction::State {
       pinched_now[id] = !single_cycle(link);
     };
     bool ball = false;
-    std::size_t checked = 0;
+    std::size_t checked = 0, pockets_checked = 0;
     std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
       const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
@@ -357,8 +402,11 @@ struct IncrementalConstriction::State {
       for (const Vertex v : pinched) pinched_now[static_cast<std::size_t>(v->info())] = 1;
       if (!pinched.empty()) {
         for (const Vertex v : pinched) fill_around(v, region);
-      } else if (!fill_pockets(region)) {  // a pocket and a handle would cancel out in χ
-        const std::vector<Vertex> handles = handle_parts(region);
+      } else if (const std::size_t before = region.size(); fill_pockets(region, pockets_checked)) {
+        pockets_checked = before;  // the pockets' own cells border only kept or filled cells
+      } else {  // a pocket and a handle would cancel out in χ
+        pockets_checked = before;
+        const std::vector<Vertex> handles = handle_parts(region, parts);
         ball = handles.empty();
         for (const Vertex v : handles) fill_around(v, region);
       }
@@ -543,6 +591,7 @@ struct IncrementalConstriction::State {
     star_slot.resize(points.size(), -1);
     pending.resize(points.size(), 0);
     pinched_now.resize(points.size(), 0);
+    fill_vertex.resize(points.size(), -1);
     received += batch.rows();
     return fresh;
   }
@@ -570,6 +619,22 @@ struct IncrementalConstriction::State {
       grow(front, [](Cell c) { return c->info().kept != 0; });
       for (const Vertex v : vertices_of(front)) fill_around(v, front);
     }
+    // The skin: layers of cells across a face from the rings, kept and
+    // removed (these filled) alike.
+    for (const Cell c : front) c->info().local = 0;
+    for (std::size_t layer = 0, from = 0; layer < kSkinLayers; ++layer) {
+      const std::size_t to = front.size();
+      for (std::size_t i = from; i < to; ++i)
+        for (int k = 0; k < 4; ++k) {
+          const Cell n = front[i]->neighbor(k);
+          if (dt.is_infinite(n) || n->info().local >= 0) continue;
+          n->info().local = 0;
+          n->info().kept = 1;
+          front.push_back(n);
+        }
+      from = to;
+    }
+    for (const Cell c : front) c->info().local = -1;
     for (const Cell c : rest) c->info().local = -1;
     front.insert(front.end(), rest.begin(), rest.end());
     return front;
@@ -587,13 +652,24 @@ struct IncrementalConstriction::State {
     }
     for (const Cell c : region) c->info().local = -1;
     region = with_margin(region, fresh);
-    if (fill_to_ball(region)) {
+    FillParts parts;
+    const bool ball = fill_to_ball(region, parts);
+    if (ball) {
       // Each connected part of the fill is constricted on its own, so a part
       // that locks releases rings of kept cells around itself only, and the
-      // others stop where their points are reached.
-      const Parts parts = parts_of(region);
-      std::vector<std::vector<Cell>> pieces(static_cast<std::size_t>(parts.count));
-      for (std::size_t i = 0; i < region.size(); ++i) pieces[static_cast<std::size_t>(parts.of_cell[i])].push_back(region[i]);
+      // others stop where their points are reached. Parts are numbered in
+      // the order of their first cells.
+      std::vector<int> label(parts.vertices.size(), -1);
+      std::vector<std::vector<Cell>> pieces;
+      for (const Cell c : region) {
+        int& l = label[static_cast<std::size_t>(parts.find(fill_vertex[static_cast<std::size_t>(c->vertex(0)->info())]))];
+        if (l < 0) {
+          l = static_cast<int>(pieces.size());
+          pieces.emplace_back();
+        }
+        pieces[static_cast<std::size_t>(l)].push_back(c);
+      }
+      forget(parts);
       std::vector<Cell> repaired;
       for (std::vector<Cell>& piece : pieces) {
         for (int ring = 0;; ++ring) {
@@ -613,6 +689,7 @@ struct IncrementalConstriction::State {
       s.faces_changed = update_faces_at(repaired);
       return;
     }
+    forget(parts);
     s.wider_repair = true;
     ++wider;
     constrict_all(s);

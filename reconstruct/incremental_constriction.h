@@ -74,7 +74,7 @@ class IncrementalConstriction {
   ///          scan order (cactus) and 5 in random order (elephant); with 0, 19
   ///          lower in scan order (cactus). Each ring costs time per batch
   ///          (docs/design.md, incremental constriction).
-  explicit IncrementalConstriction(const ReconstructionOptions& options = surface_defaults(), int margin = 3);
+  explicit IncrementalConstriction(const ReconstructionOptions& options = surface_defaults(), int margin = 2);
   ~IncrementalConstriction();
   IncrementalConstriction(IncrementalConstriction&&) noexcept;
   IncrementalConstriction& operator=(IncrementalConstriction&&) noexcept;
