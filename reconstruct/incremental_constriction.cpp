@@ -111,6 +111,9 @@ struct IncrementalConstriction::State {
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
   std::vector<int> fill_vertex;         // scratch: a point's number in FillParts, else −1
+  std::vector<int> repaired_by;         // scratch: the last region of this batch's repair holding the point, else −1
+  std::vector<int> patch_vertices;      // the points with repaired_by set
+  std::vector<std::pair<std::array<int, 3>, int>> patch_faces;  // boundary triangles at them, with their region
   Eigen::Index received = 0, duplicates = 0;
   std::size_t pending_count = 0, wider = 0;
   Vertex hint;
@@ -491,10 +494,59 @@ struct IncrementalConstriction::State {
     return options;
   }
 
+  // Records f(v) for the points of a region whose result was kept, from the
+  // boundary of its complex: every boundary triangle at a point of the
+  // region is a face of a cell around that point, so of the complex, and the
+  // complex's own edge (its removed or frozen cells' faces to cells outside
+  // it) has no point of the region. `piece` numbers the region within the
+  // batch; the triangles at its points are kept for patch_size.
+  void record_faces(const LocalComplex& L, const Constriction<3>& r, int piece) {
+    std::vector<int> f(L.core_vertices, 0);
+    for (Eigen::Index t = 0; t < r.boundary.rows(); ++t) {
+      bool at_core = false;
+      std::array<int, 3> face{};
+      for (int k = 0; k < 3; ++k) {
+        const auto v = static_cast<std::size_t>(r.boundary(t, k));
+        if (v < L.core_vertices) {
+          ++f[v];
+          at_core = true;
+        }
+        face[static_cast<std::size_t>(k)] = L.vertices[v]->info();
+      }
+      if (at_core) patch_faces.push_back({face, piece});
+    }
+    for (std::size_t k = 0; k < L.core_vertices; ++k) {
+      const auto id = static_cast<std::size_t>(L.vertices[k]->info());
+      corners += f[k] - faces_at[id];
+      faces_at[id] = f[k];
+      if (repaired_by[id] < 0) patch_vertices.push_back(static_cast<int>(id));
+      repaired_by[id] = piece;
+    }
+  }
+
+  // The boundary triangles at the points of the regions recorded since the
+  // last call, each counted once: a triangle is counted in the last region
+  // that had one of its points (a later region re-decided the cells around
+  // that point, so its result holds the triangle if it is still there).
+  std::size_t patch_size() {
+    std::size_t n = 0;
+    for (const auto& [face, piece] : patch_faces) {
+      int last = -1;
+      for (const int v : face) last = std::max(last, repaired_by[static_cast<std::size_t>(v)]);
+      n += last == piece;
+    }
+    for (const int v : patch_vertices) repaired_by[static_cast<std::size_t>(v)] = -1;
+    patch_vertices.clear();
+    patch_faces.clear();
+    return n;
+  }
+
   // Constricts the region (kept cells around it frozen when `surround`);
   // keeps the result when every point of the region that is not pending
-  // reached the boundary, or when `final`. Returns whether they all did.
-  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats) {
+  // reached the boundary, or when `final`, and then, for a region `piece`
+  // ≥ 0 of a local repair, records f(v) at its points (record_faces).
+  // Returns whether they all did.
+  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats, int piece = -1) {
     const LocalComplex L = local_complex(region, surround);
     stats.tetrahedra_touched += L.cells.size();
     const Constriction<3> r = constrict(L.dt, L.start, with_sight_lines(L, stats));
@@ -510,6 +562,7 @@ struct IncrementalConstriction::State {
       pending_count += static_cast<std::size_t>(interior[k]) - static_cast<std::size_t>(p);
       p = interior[k];
     }
+    if (piece >= 0) record_faces(L, r, piece);
     return reached;
   }
 
@@ -533,29 +586,6 @@ struct IncrementalConstriction::State {
             corners += 3;
             for (int k = 1; k < 4; ++k) ++faces_at[static_cast<std::size_t>(c->vertex((i + k) % 4)->info())];
           }
-  }
-
-  // Records f(v) for the points of the repaired region; returns the boundary
-  // triangles at them, each counted once.
-  std::size_t update_faces_at(const std::vector<Cell>& region) {
-    const std::vector<Vertex> vertices = vertices_of(region);
-    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = 0;
-    std::size_t patch = 0;
-    std::vector<std::array<int, 2>> link;
-    for (const Vertex v : vertices) {
-      link.clear();
-      const int id = v->info();
-      int& f = faces_at[static_cast<std::size_t>(id)];
-      corners -= f;
-      f = boundary_faces_at(v, &link);
-      corners += f;
-      for (const auto& e : link) {  // count a triangle at its smallest point in the patch
-        const auto first = [&](int w) { return local_vertex[static_cast<std::size_t>(w)] < 0 || id < w; };
-        patch += first(e[0]) && first(e[1]);
-      }
-    }
-    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
-    return patch;
   }
 
   // Inserts the batch in spatial order (each point located from the last),
@@ -592,6 +622,7 @@ struct IncrementalConstriction::State {
     pending.resize(points.size(), 0);
     pinched_now.resize(points.size(), 0);
     fill_vertex.resize(points.size(), -1);
+    repaired_by.resize(points.size(), -1);
     received += batch.rows();
     return fresh;
   }
@@ -670,23 +701,22 @@ struct IncrementalConstriction::State {
         pieces[static_cast<std::size_t>(l)].push_back(c);
       }
       forget(parts);
-      std::vector<Cell> repaired;
-      for (std::vector<Cell>& piece : pieces) {
+      for (std::size_t p = 0; p < pieces.size(); ++p) {
+        std::vector<Cell>& piece = pieces[p];
         for (int ring = 0;; ++ring) {
           // The last ring keeps its result even if it locked: the points it
           // could not reach stay pending (augmentation brings them on, §5.4).
           // A ring may take in cells of a later part: that part's own
           // constriction then starts from what this one left.
           const bool last = ring == kUnfreezeRings;
-          if (constrict_region(piece, true, last, s) || last) {
+          if (constrict_region(piece, true, last, s, static_cast<int>(p)) || last) {
             s.rings = std::max(s.rings, ring);
             break;
           }
           grow(piece, [](Cell c) { return c->info().kept != 0; });
         }
-        repaired.insert(repaired.end(), piece.begin(), piece.end());
       }
-      s.faces_changed = update_faces_at(repaired);
+      s.faces_changed = patch_size();
       return;
     }
     forget(parts);
