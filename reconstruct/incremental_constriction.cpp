@@ -646,13 +646,45 @@ struct IncrementalConstriction::State {
     for (std::size_t i = 0; i < created.size(); ++i)
       (10 * fresh_in[static_cast<std::size_t>(parts.of_cell[i])] >= fresh.size() ? front : rest).push_back(created[i]);
     for (const Cell c : rest) c->info().local = 0;  // not taken into the front's rings
+    for (const Cell c : front) c->info().local = 0;
+    // A ring: the kept cells around every point of the front, then the
+    // removed ones (filled) around every point of the front so grown. A
+    // point whose kept (removed) cells were all taken in before has none
+    // left out (no cell is removed here), so each step looks only around
+    // the points it has not looked around yet, in the order they appeared.
+    std::vector<Vertex> known;  // the points of front[0, scanned), in order of appearance (fill_vertex marks them)
+    std::size_t scanned = 0, kept_done = 0, removed_done = 0;
+    const auto add_points = [&] {
+      for (; scanned < front.size(); ++scanned)
+        for (int k = 0; k < 4; ++k) {
+          const Vertex v = front[scanned]->vertex(k);
+          int& mark = fill_vertex[static_cast<std::size_t>(v->info())];
+          if (mark < 0) {
+            mark = 0;
+            known.push_back(v);
+          }
+        }
+    };
     for (int ring = 0; ring < margin && !front.empty(); ++ring) {
-      grow(front, [](Cell c) { return c->info().kept != 0; });
-      for (const Vertex v : vertices_of(front)) fill_around(v, front);
+      add_points();
+      for (const std::size_t end = known.size(); kept_done < end; ++kept_done)
+        for (const Cell c : star(known[kept_done]))
+          if (c->info().local < 0 && c->info().kept) {
+            c->info().local = 0;
+            front.push_back(c);
+          }
+      add_points();
+      for (const std::size_t end = known.size(); removed_done < end; ++removed_done)
+        for (const Cell c : star(known[removed_done]))
+          if (!c->info().kept) {
+            c->info().kept = 1;
+            c->info().local = 0;
+            front.push_back(c);
+          }
     }
+    for (const Vertex v : known) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
     // The skin: layers of cells across a face from the rings, kept and
     // removed (these filled) alike.
-    for (const Cell c : front) c->info().local = 0;
     for (std::size_t layer = 0, from = 0; layer < kSkinLayers; ++layer) {
       const std::size_t to = front.size();
       for (std::size_t i = from; i < to; ++i)
