@@ -316,6 +316,7 @@ struct IncrementalConstriction::State {
   // instead of walking the whole fill again.
   struct FillParts {
     std::vector<Vertex> vertices;  // in the order of their first cells in the fill
+    std::vector<int> ids;          // their numbers (info)
     std::vector<int> parent;
     std::size_t cells = 0;         // region[0, cells) are in
     int find(int a) {
@@ -329,6 +330,7 @@ struct IncrementalConstriction::State {
     if (id < 0) {
       id = static_cast<int>(p.vertices.size());
       p.vertices.push_back(v);
+      p.ids.push_back(v->info());
       p.parent.push_back(id);
     }
     return id;
@@ -341,7 +343,7 @@ struct IncrementalConstriction::State {
     }
   }
   void forget(const FillParts& p) {
-    for (const Vertex v : p.vertices) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
+    for (const int id : p.ids) fill_vertex[static_cast<std::size_t>(id)] = -1;
   }
 
   // The Euler characteristic's change (in sixths, see euler_share) per
@@ -355,7 +357,7 @@ struct IncrementalConstriction::State {
     std::vector<int> change(p.vertices.size(), 0);  // per root
     std::vector<int> root(p.vertices.size());
     for (std::size_t k = 0; k < p.vertices.size(); ++k) {
-      const auto id = static_cast<std::size_t>(p.vertices[k]->info());
+      const auto id = static_cast<std::size_t>(p.ids[k]);
       root[k] = p.find(static_cast<int>(k));
       change[static_cast<std::size_t>(root[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
     }
