@@ -111,6 +111,8 @@ struct IncrementalConstriction::State {
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
   std::vector<int> fill_vertex;         // scratch: a point's number in FillParts, else −1
+  std::vector<char> inner;              // scratch: every cell around the point is in the fill, none infinite
+  std::vector<int> inner_points;        // the points with inner set
   std::vector<int> repaired_by;         // scratch: the last region of this batch's repair holding the point, else −1
   std::vector<int> patch_vertices;      // the points with repaired_by set
   std::vector<std::pair<std::array<int, 3>, int>> patch_faces;  // boundary triangles at them, with their region
@@ -124,6 +126,7 @@ struct IncrementalConstriction::State {
   // of a batch in one array.
   std::vector<int> star_slot;  // per point: its entry in star_range, else −1
   std::vector<std::array<std::size_t, 2>> star_range;
+  std::vector<char> star_on_hull;  // per entry of star_range: an infinite cell is around the point
   std::vector<Cell> star_cells;
   std::vector<int> starred;
   std::vector<Cell> walk;
@@ -149,12 +152,14 @@ struct IncrementalConstriction::State {
         visit_stamp = 1;
       }
       const unsigned stamp = visit_stamp;
+      char on_hull = 0;
       walk.assign(1, v->cell());
       v->cell()->info().visit = stamp;
       while (!walk.empty()) {
         const Cell c = walk.back();
         walk.pop_back();
         if (!dt.is_infinite(c)) star_cells.push_back(c);
+        else on_hull = 1;
         for (int i = 0; i < 4; ++i) {
           if (c->vertex(i) == v) continue;
           const Cell n = c->neighbor(i);
@@ -165,6 +170,7 @@ struct IncrementalConstriction::State {
         }
       }
       star_range.push_back({from, star_cells.size()});
+      star_on_hull.push_back(on_hull);
     }
     const auto& r = star_range[static_cast<std::size_t>(slot)];
     return {star_cells.data() + r[0], star_cells.data() + r[1]};
@@ -173,6 +179,7 @@ struct IncrementalConstriction::State {
     for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
     starred.clear();
     star_range.clear();
+    star_on_hull.clear();
     star_cells.clear();
   }
 
@@ -383,6 +390,11 @@ struct IncrementalConstriction::State {
     const auto refresh = [&](Vertex v) {
       const auto id = static_cast<std::size_t>(v->info());
       if (f_now[id] < 0) known.push_back(v);
+      if (inner[id]) {  // every cell around v is filled: no boundary triangle at v
+        f_now[id] = 0;
+        pinched_now[id] = 0;
+        return;
+      }
       link.clear();
       f_now[id] = boundary_faces_at(v, &link);
       pinched_now[id] = !single_cycle(link);
@@ -624,6 +636,7 @@ struct IncrementalConstriction::State {
     pending.resize(points.size(), 0);
     pinched_now.resize(points.size(), 0);
     fill_vertex.resize(points.size(), -1);
+    inner.resize(points.size(), 0);
     repaired_by.resize(points.size(), -1);
     received += batch.rows();
     return fresh;
@@ -684,6 +697,15 @@ struct IncrementalConstriction::State {
             front.push_back(c);
           }
     }
+    // The points looked around in both steps have all their cells in the
+    // front (filled): fill_to_ball knows they bound nothing.
+    for (std::size_t k = 0; k < std::min(kept_done, removed_done); ++k) {
+      const auto id = static_cast<std::size_t>(known[k]->info());
+      if (!star_on_hull[static_cast<std::size_t>(star_slot[id])]) {
+        inner[id] = 1;
+        inner_points.push_back(static_cast<int>(id));
+      }
+    }
     for (const Vertex v : known) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
     // The skin: layers of cells across a face from the rings, kept and
     // removed (these filled) alike.
@@ -719,6 +741,8 @@ struct IncrementalConstriction::State {
     region = with_margin(region, fresh);
     FillParts parts;
     const bool ball = fill_to_ball(region, parts);
+    for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = 0;
+    inner_points.clear();
     if (ball) {
       // Each connected part of the fill is constricted on its own, so a part
       // that locks releases rings of kept cells around itself only, and the
