@@ -56,19 +56,21 @@ constexpr int kSkinLayers = 2;
 // vertex's share, 0 for a point off the boundary.
 int euler_share(int f) { return f > 0 ? 6 - f : 0; }
 
-// The link of a boundary vertex (one edge per boundary triangle at it) is a
+// The link of a boundary vertex (one edge per boundary triangle at it; its
+// ends as vertex handles, compared without reading the vertices) is a
 // single cycle: the surface is a 2-manifold there.
-bool single_cycle(const std::vector<std::array<int, 2>>& link) {
+using LinkEdge = std::array<Vertex, 2>;
+bool single_cycle(const std::vector<LinkEdge>& link) {
   if (link.empty()) return true;
   for (const auto& e : link)
-    for (const int end : e) {
+    for (const Vertex end : e) {
       int degree = 0;
       for (const auto& g : link) degree += (g[0] == end) + (g[1] == end);
       if (degree != 2) return false;
     }
   // Every link vertex has degree 2: a union of cycles; walk the first one.
   std::size_t length = 0;
-  int previous = link[0][0], at = link[0][1];
+  Vertex previous = link[0][0], at = link[0][1];
   do {
     ++length;
     for (const auto& g : link)
@@ -183,24 +185,19 @@ struct IncrementalConstriction::State {
     star_cells.clear();
   }
 
-  // Boundary triangles at v, and (optionally) their edges opposite v.
-  int boundary_faces_at(Vertex v, std::vector<std::array<int, 2>>* link) {
-    int f = 0;
+  // The boundary triangles at v, as their edges opposite v.
+  void boundary_link(Vertex v, std::vector<LinkEdge>& link) {
     for (const Cell c : star(v)) {
       if (!c->info().kept) continue;
       const int iv = c->index(v);
       for (int i = 0; i < 4; ++i) {
         if (i == iv || kept(c->neighbor(i))) continue;
-        ++f;
-        if (link) {
-          std::array<int, 2> e{};
-          for (int k = 0, n = 0; k < 4; ++k)
-            if (k != iv && k != i) e[static_cast<std::size_t>(n++)] = c->vertex(k)->info();
-          link->push_back(e);
-        }
+        LinkEdge e{};
+        for (int k = 0, n = 0; k < 4; ++k)
+          if (k != iv && k != i) e[static_cast<std::size_t>(n++)] = c->vertex(k);
+        link.push_back(e);
       }
     }
-    return f;
   }
 
   // The distinct finite vertices of `cells`.
@@ -386,7 +383,7 @@ struct IncrementalConstriction::State {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
     std::vector<Vertex> known;
-    std::vector<std::array<int, 2>> link;
+    std::vector<LinkEdge> link;
     const auto refresh = [&](Vertex v) {
       const auto id = static_cast<std::size_t>(v->info());
       if (f_now[id] < 0) known.push_back(v);
@@ -396,7 +393,8 @@ struct IncrementalConstriction::State {
         return;
       }
       link.clear();
-      f_now[id] = boundary_faces_at(v, &link);
+      boundary_link(v, link);
+      f_now[id] = static_cast<int>(link.size());
       pinched_now[id] = !single_cycle(link);
     };
     bool ball = false;
