@@ -50,8 +50,8 @@ struct BatchStats {
 /// on its own with the batch constriction (constrict(), the removability
 /// rules of §5.3 and the γ-indicator of Definition 5.2 with the options'
 /// selection rule), the kept cells around it frozen, until its points are on
-/// the boundary. If a part locks, the frozen ring around it is released, up
-/// to two rings; points even that cannot reach stay pending, and surface()
+/// the boundary. If a part locks, the frozen ring around it is released
+/// (one ring); points even that cannot reach stay pending, and surface()
 /// brings them to the boundary with the augmentation of §5.4 before the
 /// flips, as reconstruct_surface does. Only if the fill does not settle is
 /// the whole triangulation constricted again from its convex hull (counted
