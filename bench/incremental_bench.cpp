@@ -73,7 +73,7 @@ Eigen::MatrixX3i in_input_numbering(const SurfaceReconstruction& r, const std::v
 
 struct Args {
   Eigen::Index points = 100000;
-  int batches = 100, every = 1, margin = 3, stop_after = -1;
+  int batches = 100, every = 1, margin = 2, stop_after = -1;
   bool scan = true;
   std::string shape = "chalice";
   std::vector<std::string> files;

@@ -43,28 +43,37 @@ using Indexed = std::pair<Kernel::Point_3, int>;
 using SortTraits = CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Indexed>>;
 
 // How far a repair may widen: rounds of filling where the fill pinched the
-// boundary; rings of kept cells released when the local constriction locks.
+// boundary; rings of kept cells released when the local constriction locks
+// (one: the locks measured at 100k points in scan order were one or two new
+// points that a second ring did not bring on either, and the second ring
+// changed no recall on the 14 meshes of docs/design.md).
 constexpr int kFillRounds = 200;
-constexpr int kUnfreezeRings = 2;
+constexpr int kUnfreezeRings = 1;
+// Layers of cells sharing a face with a scan front's margin rings, re-opened
+// after the rings: a thinner skin than a third ring of whole stars (measured
+// in docs/design.md, incremental constriction).
+constexpr int kSkinLayers = 2;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
 // = Σ_v (1 − f(v)/6), f(v) the triangles at v (E = 3F/2): six times a
 // vertex's share, 0 for a point off the boundary.
 int euler_share(int f) { return f > 0 ? 6 - f : 0; }
 
-// The link of a boundary vertex (one edge per boundary triangle at it) is a
+// The link of a boundary vertex (one edge per boundary triangle at it; its
+// ends as vertex handles, compared without reading the vertices) is a
 // single cycle: the surface is a 2-manifold there.
-bool single_cycle(const std::vector<std::array<int, 2>>& link) {
+using LinkEdge = std::array<Vertex, 2>;
+bool single_cycle(const std::vector<LinkEdge>& link) {
   if (link.empty()) return true;
   for (const auto& e : link)
-    for (const int end : e) {
+    for (const Vertex end : e) {
       int degree = 0;
       for (const auto& g : link) degree += (g[0] == end) + (g[1] == end);
       if (degree != 2) return false;
     }
   // Every link vertex has degree 2: a union of cycles; walk the first one.
   std::size_t length = 0;
-  int previous = link[0][0], at = link[0][1];
+  Vertex previous = link[0][0], at = link[0][1];
   do {
     ++length;
     for (const auto& g : link)
@@ -93,7 +102,7 @@ struct LocalComplex {
 struct IncrementalConstriction::State {
   ReconstructionOptions options;
   ConstrictionOptions constriction;
-  int margin = 3;
+  int margin = 2;
   Delaunay dt;
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches
@@ -106,6 +115,12 @@ struct IncrementalConstriction::State {
   std::vector<int> local_vertex;        // scratch: a point's number in a LocalComplex, else −1
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
+  std::vector<int> fill_vertex;         // scratch: a point's number in FillParts, else −1
+  std::vector<char> inner;              // scratch: every cell around the point is in the fill, none infinite
+  std::vector<int> inner_points;        // the points with inner set
+  std::vector<int> repaired_by;         // scratch: the last region of this batch's repair holding the point, else −1
+  std::vector<int> patch_vertices;      // the points with repaired_by set
+  std::vector<std::pair<std::array<int, 3>, int>> patch_faces;  // boundary triangles at them, with their region
   Eigen::Index received = 0, duplicates = 0;
   std::size_t pending_count = 0, wider = 0;
   Vertex hint;
@@ -116,6 +131,7 @@ struct IncrementalConstriction::State {
   // of a batch in one array.
   std::vector<int> star_slot;  // per point: its entry in star_range, else −1
   std::vector<std::array<std::size_t, 2>> star_range;
+  std::vector<char> star_on_hull;  // per entry of star_range: an infinite cell is around the point
   std::vector<Cell> star_cells;
   std::vector<int> starred;
   std::vector<Cell> walk;
@@ -141,12 +157,14 @@ struct IncrementalConstriction::State {
         visit_stamp = 1;
       }
       const unsigned stamp = visit_stamp;
+      char on_hull = 0;
       walk.assign(1, v->cell());
       v->cell()->info().visit = stamp;
       while (!walk.empty()) {
         const Cell c = walk.back();
         walk.pop_back();
         if (!dt.is_infinite(c)) star_cells.push_back(c);
+        else on_hull = 1;
         for (int i = 0; i < 4; ++i) {
           if (c->vertex(i) == v) continue;
           const Cell n = c->neighbor(i);
@@ -157,6 +175,7 @@ struct IncrementalConstriction::State {
         }
       }
       star_range.push_back({from, star_cells.size()});
+      star_on_hull.push_back(on_hull);
     }
     const auto& r = star_range[static_cast<std::size_t>(slot)];
     return {star_cells.data() + r[0], star_cells.data() + r[1]};
@@ -165,27 +184,23 @@ struct IncrementalConstriction::State {
     for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
     starred.clear();
     star_range.clear();
+    star_on_hull.clear();
     star_cells.clear();
   }
 
-  // Boundary triangles at v, and (optionally) their edges opposite v.
-  int boundary_faces_at(Vertex v, std::vector<std::array<int, 2>>* link) {
-    int f = 0;
+  // The boundary triangles at v, as their edges opposite v.
+  void boundary_link(Vertex v, std::vector<LinkEdge>& link) {
     for (const Cell c : star(v)) {
       if (!c->info().kept) continue;
       const int iv = c->index(v);
       for (int i = 0; i < 4; ++i) {
         if (i == iv || kept(c->neighbor(i))) continue;
-        ++f;
-        if (link) {
-          std::array<int, 2> e{};
-          for (int k = 0, n = 0; k < 4; ++k)
-            if (k != iv && k != i) e[static_cast<std::size_t>(n++)] = c->vertex(k)->info();
-          link->push_back(e);
-        }
+        LinkEdge e{};
+        for (int k = 0, n = 0; k < 4; ++k)
+          if (k != iv && k != i) e[static_cast<std::size_t>(n++)] = c->vertex(k);
+        link.push_back(e);
       }
     }
-    return f;
   }
 
   // The distinct finite vertices of `cells`.
@@ -229,14 +244,17 @@ struct IncrementalConstriction::State {
 
   // Fills the pockets the fill enclosed: components of removed cells next to
   // the region that reach neither the outside of the hull nor more cells than
-  // the region has (beyond that they count as outside). Returns whether it
+  // the region has (beyond that they count as outside). Only the cells
+  // region[from, end) are looked around: a component of removed cells is
+  // split (and a part of it enclosed) only by filling cells next to it, and
+  // the cells filled before were looked around already. Returns whether it
   // found any.
-  bool fill_pockets(std::vector<Cell>& region) {
+  bool fill_pockets(std::vector<Cell>& region, std::size_t from) {
     const std::size_t budget = 4 * region.size() + 256;
     std::vector<Cell> component, seen;
     bool found = false;
     const std::size_t size = region.size();
-    for (std::size_t r = 0; r < size; ++r)
+    for (std::size_t r = from; r < size; ++r)
       for (int i = 0; i < 4; ++i) {
         const Cell start = region[r]->neighbor(i);
         if (dt.is_infinite(start) || start->info().kept || start->info().local >= 0) continue;
@@ -299,22 +317,60 @@ struct IncrementalConstriction::State {
     return p;
   }
 
+  // The connected parts of the fill (joined through shared points), kept up
+  // to date as the fill grows: a union-find over its points, which only
+  // ever merges, so each round adds the cells filled since the last one
+  // instead of walking the whole fill again.
+  struct FillParts {
+    std::vector<Vertex> vertices;  // in the order of their first cells in the fill
+    std::vector<int> ids;          // their numbers (info)
+    std::vector<int> parent;
+    std::size_t cells = 0;         // region[0, cells) are in
+    int find(int a) {
+      while (parent[static_cast<std::size_t>(a)] != a)
+        a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      return a;
+    }
+  };
+  int fill_number(FillParts& p, Vertex v) {
+    int& id = fill_vertex[static_cast<std::size_t>(v->info())];
+    if (id < 0) {
+      id = static_cast<int>(p.vertices.size());
+      p.vertices.push_back(v);
+      p.ids.push_back(v->info());
+      p.parent.push_back(id);
+    }
+    return id;
+  }
+  void add_cells(FillParts& p, const std::vector<Cell>& region) {
+    for (; p.cells < region.size(); ++p.cells) {
+      const Cell c = region[p.cells];
+      const int a = p.find(fill_number(p, c->vertex(0)));
+      for (int k = 1; k < 4; ++k) p.parent[static_cast<std::size_t>(p.find(fill_number(p, c->vertex(k))))] = a;
+    }
+  }
+  void forget(const FillParts& p) {
+    for (const int id : p.ids) fill_vertex[static_cast<std::size_t>(id)] = -1;
+  }
+
   // The Euler characteristic's change (in sixths, see euler_share) per
   // connected part of the fill: the boundary triangles at a point change
   // only with the cells around it, so each part changes χ as if it were
   // filled alone, and a handle in one part is found (and repaired) there,
   // not in the whole fill. Returns the points of the parts whose change is
   // not 0 (f_now holds f(v) at every point of the fill).
-  std::vector<Vertex> handle_parts(const std::vector<Cell>& region) {
-    const Parts p = parts_of(region);
-    std::vector<int> change(static_cast<std::size_t>(p.count), 0);
+  std::vector<Vertex> handle_parts(const std::vector<Cell>& region, FillParts& p) {
+    add_cells(p, region);
+    std::vector<int> change(p.vertices.size(), 0);  // per root
+    std::vector<int> root(p.vertices.size());
     for (std::size_t k = 0; k < p.vertices.size(); ++k) {
-      const auto id = static_cast<std::size_t>(p.vertices[k]->info());
-      change[static_cast<std::size_t>(p.of_vertex[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
+      const auto id = static_cast<std::size_t>(p.ids[k]);
+      root[k] = p.find(static_cast<int>(k));
+      change[static_cast<std::size_t>(root[k])] += euler_share(f_now[id]) - euler_share(faces_at[id]);
     }
     std::vector<Vertex> out;
     for (std::size_t k = 0; k < p.vertices.size(); ++k)
-      if (change[static_cast<std::size_t>(p.of_vertex[k])] != 0) out.push_back(p.vertices[k]);
+      if (change[static_cast<std::size_t>(root[k])] != 0) out.push_back(p.vertices[k]);
     return out;
   }
 
@@ -324,21 +380,28 @@ struct IncrementalConstriction::State {
   // raises it). Where the fill pinched the boundary at a point, the removed
   // cells around that point are filled too; where a part of the fill changed
   // the Euler characteristic, those around every point of that part. Returns
-  // false when that does not settle within a few rounds.
-  bool fill_to_ball(std::vector<Cell>& region) {
+  // false when that does not settle within a few rounds. `parts` ends as
+  // the connected parts of the fill.
+  bool fill_to_ball(std::vector<Cell>& region, FillParts& parts) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
     std::vector<Vertex> known;
-    std::vector<std::array<int, 2>> link;
+    std::vector<LinkEdge> link;
     const auto refresh = [&](Vertex v) {
       const auto id = static_cast<std::size_t>(v->info());
       if (f_now[id] < 0) known.push_back(v);
+      if (inner[id]) {  // every cell around v is filled: no boundary triangle at v
+        f_now[id] = 0;
+        pinched_now[id] = 0;
+        return;
+      }
       link.clear();
-      f_now[id] = boundary_faces_at(v, &link);
+      boundary_link(v, link);
+      f_now[id] = static_cast<int>(link.size());
       pinched_now[id] = !single_cycle(link);
     };
     bool ball = false;
-    std::size_t checked = 0;
+    std::size_t checked = 0, pockets_checked = 0;
     std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
       const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
@@ -357,8 +420,11 @@ struct IncrementalConstriction::State {
       for (const Vertex v : pinched) pinched_now[static_cast<std::size_t>(v->info())] = 1;
       if (!pinched.empty()) {
         for (const Vertex v : pinched) fill_around(v, region);
-      } else if (!fill_pockets(region)) {  // a pocket and a handle would cancel out in χ
-        const std::vector<Vertex> handles = handle_parts(region);
+      } else if (const std::size_t before = region.size(); fill_pockets(region, pockets_checked)) {
+        pockets_checked = before;  // the pockets' own cells border only kept or filled cells
+      } else {  // a pocket and a handle would cancel out in χ
+        pockets_checked = before;
+        const std::vector<Vertex> handles = handle_parts(region, parts);
         ball = handles.empty();
         for (const Vertex v : handles) fill_around(v, region);
       }
@@ -443,10 +509,59 @@ struct IncrementalConstriction::State {
     return options;
   }
 
+  // Records f(v) for the points of a region whose result was kept, from the
+  // boundary of its complex: every boundary triangle at a point of the
+  // region is a face of a cell around that point, so of the complex, and the
+  // complex's own edge (its removed or frozen cells' faces to cells outside
+  // it) has no point of the region. `piece` numbers the region within the
+  // batch; the triangles at its points are kept for patch_size.
+  void record_faces(const LocalComplex& L, const Constriction<3>& r, int piece) {
+    std::vector<int> f(L.core_vertices, 0);
+    for (Eigen::Index t = 0; t < r.boundary.rows(); ++t) {
+      bool at_core = false;
+      std::array<int, 3> face{};
+      for (int k = 0; k < 3; ++k) {
+        const auto v = static_cast<std::size_t>(r.boundary(t, k));
+        if (v < L.core_vertices) {
+          ++f[v];
+          at_core = true;
+        }
+        face[static_cast<std::size_t>(k)] = L.vertices[v]->info();
+      }
+      if (at_core) patch_faces.push_back({face, piece});
+    }
+    for (std::size_t k = 0; k < L.core_vertices; ++k) {
+      const auto id = static_cast<std::size_t>(L.vertices[k]->info());
+      corners += f[k] - faces_at[id];
+      faces_at[id] = f[k];
+      if (repaired_by[id] < 0) patch_vertices.push_back(static_cast<int>(id));
+      repaired_by[id] = piece;
+    }
+  }
+
+  // The boundary triangles at the points of the regions recorded since the
+  // last call, each counted once: a triangle is counted in the last region
+  // that had one of its points (a later region re-decided the cells around
+  // that point, so its result holds the triangle if it is still there).
+  std::size_t patch_size() {
+    std::size_t n = 0;
+    for (const auto& [face, piece] : patch_faces) {
+      int last = -1;
+      for (const int v : face) last = std::max(last, repaired_by[static_cast<std::size_t>(v)]);
+      n += last == piece;
+    }
+    for (const int v : patch_vertices) repaired_by[static_cast<std::size_t>(v)] = -1;
+    patch_vertices.clear();
+    patch_faces.clear();
+    return n;
+  }
+
   // Constricts the region (kept cells around it frozen when `surround`);
   // keeps the result when every point of the region that is not pending
-  // reached the boundary, or when `final`. Returns whether they all did.
-  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats) {
+  // reached the boundary, or when `final`, and then, for a region `piece`
+  // ≥ 0 of a local repair, records f(v) at its points (record_faces).
+  // Returns whether they all did.
+  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats, int piece = -1) {
     const LocalComplex L = local_complex(region, surround);
     stats.tetrahedra_touched += L.cells.size();
     const Constriction<3> r = constrict(L.dt, L.start, with_sight_lines(L, stats));
@@ -462,6 +577,7 @@ struct IncrementalConstriction::State {
       pending_count += static_cast<std::size_t>(interior[k]) - static_cast<std::size_t>(p);
       p = interior[k];
     }
+    if (piece >= 0) record_faces(L, r, piece);
     return reached;
   }
 
@@ -485,29 +601,6 @@ struct IncrementalConstriction::State {
             corners += 3;
             for (int k = 1; k < 4; ++k) ++faces_at[static_cast<std::size_t>(c->vertex((i + k) % 4)->info())];
           }
-  }
-
-  // Records f(v) for the points of the repaired region; returns the boundary
-  // triangles at them, each counted once.
-  std::size_t update_faces_at(const std::vector<Cell>& region) {
-    const std::vector<Vertex> vertices = vertices_of(region);
-    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = 0;
-    std::size_t patch = 0;
-    std::vector<std::array<int, 2>> link;
-    for (const Vertex v : vertices) {
-      link.clear();
-      const int id = v->info();
-      int& f = faces_at[static_cast<std::size_t>(id)];
-      corners -= f;
-      f = boundary_faces_at(v, &link);
-      corners += f;
-      for (const auto& e : link) {  // count a triangle at its smallest point in the patch
-        const auto first = [&](int w) { return local_vertex[static_cast<std::size_t>(w)] < 0 || id < w; };
-        patch += first(e[0]) && first(e[1]);
-      }
-    }
-    for (const Vertex v : vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
-    return patch;
   }
 
   // Inserts the batch in spatial order (each point located from the last),
@@ -543,6 +636,9 @@ struct IncrementalConstriction::State {
     star_slot.resize(points.size(), -1);
     pending.resize(points.size(), 0);
     pinched_now.resize(points.size(), 0);
+    fill_vertex.resize(points.size(), -1);
+    inner.resize(points.size(), 0);
+    repaired_by.resize(points.size(), -1);
     received += batch.rows();
     return fresh;
   }
@@ -566,10 +662,67 @@ struct IncrementalConstriction::State {
     for (std::size_t i = 0; i < created.size(); ++i)
       (10 * fresh_in[static_cast<std::size_t>(parts.of_cell[i])] >= fresh.size() ? front : rest).push_back(created[i]);
     for (const Cell c : rest) c->info().local = 0;  // not taken into the front's rings
+    for (const Cell c : front) c->info().local = 0;
+    // A ring: the kept cells around every point of the front, then the
+    // removed ones (filled) around every point of the front so grown. A
+    // point whose kept (removed) cells were all taken in before has none
+    // left out (no cell is removed here), so each step looks only around
+    // the points it has not looked around yet, in the order they appeared.
+    std::vector<Vertex> known;  // the points of front[0, scanned), in order of appearance (fill_vertex marks them)
+    std::size_t scanned = 0, kept_done = 0, removed_done = 0;
+    const auto add_points = [&] {
+      for (; scanned < front.size(); ++scanned)
+        for (int k = 0; k < 4; ++k) {
+          const Vertex v = front[scanned]->vertex(k);
+          int& mark = fill_vertex[static_cast<std::size_t>(v->info())];
+          if (mark < 0) {
+            mark = 0;
+            known.push_back(v);
+          }
+        }
+    };
     for (int ring = 0; ring < margin && !front.empty(); ++ring) {
-      grow(front, [](Cell c) { return c->info().kept != 0; });
-      for (const Vertex v : vertices_of(front)) fill_around(v, front);
+      add_points();
+      for (const std::size_t end = known.size(); kept_done < end; ++kept_done)
+        for (const Cell c : star(known[kept_done]))
+          if (c->info().local < 0 && c->info().kept) {
+            c->info().local = 0;
+            front.push_back(c);
+          }
+      add_points();
+      for (const std::size_t end = known.size(); removed_done < end; ++removed_done)
+        for (const Cell c : star(known[removed_done]))
+          if (!c->info().kept) {
+            c->info().kept = 1;
+            c->info().local = 0;
+            front.push_back(c);
+          }
     }
+    // The points looked around in both steps have all their cells in the
+    // front (filled): fill_to_ball knows they bound nothing.
+    for (std::size_t k = 0; k < std::min(kept_done, removed_done); ++k) {
+      const auto id = static_cast<std::size_t>(known[k]->info());
+      if (!star_on_hull[static_cast<std::size_t>(star_slot[id])]) {
+        inner[id] = 1;
+        inner_points.push_back(static_cast<int>(id));
+      }
+    }
+    for (const Vertex v : known) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
+    // The skin: layers of cells across a face from the rings, kept and
+    // removed (these filled) alike.
+    for (std::size_t layer = 0, from = 0; layer < kSkinLayers; ++layer) {
+      const std::size_t to = front.size();
+      for (std::size_t i = from; i < to; ++i)
+        for (int k = 0; k < 4; ++k) {
+          const Cell n = front[i]->neighbor(k);
+          if (dt.is_infinite(n) || n->info().local >= 0) continue;
+          n->info().local = 0;
+          n->info().kept = 1;
+          front.push_back(n);
+        }
+      from = to;
+    }
+    for (const Cell c : front) c->info().local = -1;
     for (const Cell c : rest) c->info().local = -1;
     front.insert(front.end(), rest.begin(), rest.end());
     return front;
@@ -587,32 +740,45 @@ struct IncrementalConstriction::State {
     }
     for (const Cell c : region) c->info().local = -1;
     region = with_margin(region, fresh);
-    if (fill_to_ball(region)) {
+    FillParts parts;
+    const bool ball = fill_to_ball(region, parts);
+    for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = 0;
+    inner_points.clear();
+    if (ball) {
       // Each connected part of the fill is constricted on its own, so a part
       // that locks releases rings of kept cells around itself only, and the
-      // others stop where their points are reached.
-      const Parts parts = parts_of(region);
-      std::vector<std::vector<Cell>> pieces(static_cast<std::size_t>(parts.count));
-      for (std::size_t i = 0; i < region.size(); ++i) pieces[static_cast<std::size_t>(parts.of_cell[i])].push_back(region[i]);
-      std::vector<Cell> repaired;
-      for (std::vector<Cell>& piece : pieces) {
+      // others stop where their points are reached. Parts are numbered in
+      // the order of their first cells.
+      std::vector<int> label(parts.vertices.size(), -1);
+      std::vector<std::vector<Cell>> pieces;
+      for (const Cell c : region) {
+        int& l = label[static_cast<std::size_t>(parts.find(fill_vertex[static_cast<std::size_t>(c->vertex(0)->info())]))];
+        if (l < 0) {
+          l = static_cast<int>(pieces.size());
+          pieces.emplace_back();
+        }
+        pieces[static_cast<std::size_t>(l)].push_back(c);
+      }
+      forget(parts);
+      for (std::size_t p = 0; p < pieces.size(); ++p) {
+        std::vector<Cell>& piece = pieces[p];
         for (int ring = 0;; ++ring) {
           // The last ring keeps its result even if it locked: the points it
           // could not reach stay pending (augmentation brings them on, §5.4).
           // A ring may take in cells of a later part: that part's own
           // constriction then starts from what this one left.
           const bool last = ring == kUnfreezeRings;
-          if (constrict_region(piece, true, last, s) || last) {
+          if (constrict_region(piece, true, last, s, static_cast<int>(p)) || last) {
             s.rings = std::max(s.rings, ring);
             break;
           }
           grow(piece, [](Cell c) { return c->info().kept != 0; });
         }
-        repaired.insert(repaired.end(), piece.begin(), piece.end());
       }
-      s.faces_changed = update_faces_at(repaired);
+      s.faces_changed = patch_size();
       return;
     }
+    forget(parts);
     s.wider_repair = true;
     ++wider;
     constrict_all(s);

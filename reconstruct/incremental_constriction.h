@@ -40,7 +40,8 @@ struct BatchStats {
 /// exact predicates, no rebuild); the tetrahedra they create start kept
 /// ("filled": the region is re-opened as if it were fresh convex hull), and
 /// so do `margin` rings of cells around the parts of them that form a scan
-/// front (a connected part holding a tenth of the batch's new points); a
+/// front (a connected part holding a tenth of the batch's new points) and
+/// two layers of cells across a face from those rings (the skin); a
 /// local check (every vertex link of the new boundary a single cycle, no
 /// enclosed pocket, Euler characteristic unchanged in every connected part of
 /// the fill) confirms the filled solid is still a ball, else the fill grows
@@ -49,8 +50,8 @@ struct BatchStats {
 /// on its own with the batch constriction (constrict(), the removability
 /// rules of §5.3 and the γ-indicator of Definition 5.2 with the options'
 /// selection rule), the kept cells around it frozen, until its points are on
-/// the boundary. If a part locks, the frozen ring around it is released, up
-/// to two rings; points even that cannot reach stay pending, and surface()
+/// the boundary. If a part locks, the frozen ring around it is released
+/// (one ring); points even that cannot reach stay pending, and surface()
 /// brings them to the boundary with the augmentation of §5.4 before the
 /// flips, as reconstruct_surface does. Only if the fill does not settle is
 /// the whole triangulation constricted again from its convex hull (counted
@@ -64,17 +65,21 @@ class IncrementalConstriction {
  public:
   /// options  as for reconstruct_surface; kept faces (§5.7) and the Voronoi
   ///          skeleton method are not supported (InvalidInput)
-  /// margin   rings of cells (kept and removed) around a scan front's new
-  ///          cells that are re-opened too, so that decisions taken before
-  ///          the new points were known (e.g. a tunnel carved to a point at
-  ///          the edge of the scan so far) are taken again. Measured on 14 of
-  ///          CGAL's meshes in 100 batches (bench/incremental_bench recall):
-  ///          with 3 the final triangle recall is within 0.4 points of from
-  ///          scratch in scan and in random order; with 2, 1.4 points lower in
-  ///          scan order (cactus) and 5 in random order (elephant); with 0, 19
-  ///          lower in scan order (cactus). Each ring costs time per batch
-  ///          (docs/design.md, incremental constriction).
-  explicit IncrementalConstriction(const ReconstructionOptions& options = surface_defaults(), int margin = 3);
+  /// margin   rings of cells (kept and removed; every cell with a point in
+  ///          the ring inside) around a scan front's new cells that are
+  ///          re-opened too, so that decisions taken before the new points
+  ///          were known (e.g. a tunnel carved to a point at the edge of the
+  ///          scan so far) are taken again; with margin > 0 the two skin
+  ///          layers (cells sharing a face) follow. Measured on 14 of CGAL's
+  ///          meshes in 100 batches (bench/incremental_bench recall): with 2
+  ///          (and the skin) the final triangle recall is within 0.9 points
+  ///          of from scratch in scan and in random order (homer, scan; all
+  ///          others within 0.3), as with 3 rings and no skin (0.4) at 30%
+  ///          fewer re-opened cells; 2 rings without the skin: 1.4 points
+  ///          lower in scan order (cactus), 5 in random order (elephant);
+  ///          0: 19 lower in scan order (cactus). Each ring costs time per
+  ///          batch (docs/design.md, incremental constriction).
+  explicit IncrementalConstriction(const ReconstructionOptions& options = surface_defaults(), int margin = 2);
   ~IncrementalConstriction();
   IncrementalConstriction(IncrementalConstriction&&) noexcept;
   IncrementalConstriction& operator=(IncrementalConstriction&&) noexcept;

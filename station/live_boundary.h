@@ -38,7 +38,7 @@ class StreamDigest {
 ///                 written to snapshot_folder/boundary-step-NNNN.ply (NNNN the
 ///                 step's index), in the object's own coordinates (placement)
 struct LiveBoundaryOptions {
-  int margin = 3;
+  int margin = 2;
   std::optional<Eigen::Vector3d> camera_centre;
   int snapshot_every = 0;
   std::filesystem::path snapshot_folder;
