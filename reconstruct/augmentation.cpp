@@ -68,7 +68,7 @@ Augmentation run_levels(Carver& carver, std::priority_queue<Carve>& heap, std::v
 
 class Augmenter {
  public:
-  Augmenter(const Eigen::MatrixX3d& P, const std::vector<std::vector<int>>& adjacency, const Eigen::MatrixX3i& boundary,
+  Augmenter(const Eigen::MatrixX3d& P, const PointNeighbours& adjacency, const Eigen::MatrixX3i& boundary,
             const Eigen::MatrixXi& keep)
       : adjacency_(adjacency), surface_(P, boundary), proposed_below_(static_cast<std::size_t>(P.rows()), 0) {
     for (Eigen::Index k = 0; k < keep.rows(); ++k) {
@@ -218,7 +218,7 @@ class Augmenter {
     }
   };
 
-  const std::vector<std::vector<int>>& adjacency_;
+  const PointNeighbours& adjacency_;
   BoundarySurface surface_;
   std::priority_queue<Carve> heap_;
   std::vector<Triangle> keep_;  // sorted triples
@@ -228,7 +228,7 @@ class Augmenter {
 
 }  // namespace
 
-Augmentation augment_constriction(const Eigen::MatrixX3d& points, const std::vector<std::vector<int>>& adjacency,
+Augmentation augment_constriction(const Eigen::MatrixX3d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
                                   const AugmentationOptions& options) {
   if (interior_vertices.empty()) return {};
@@ -250,7 +250,7 @@ using Kernel2 = CGAL::Exact_predicates_inexact_constructions_kernel;
 // vertex a, running to next[a]).
 class Augmenter2 {
  public:
-  Augmenter2(const Eigen::MatrixX2d& P, const std::vector<std::vector<int>>& adjacency, const Eigen::MatrixX2i& boundary)
+  Augmenter2(const Eigen::MatrixX2d& P, const PointNeighbours& adjacency, const Eigen::MatrixX2i& boundary)
       : P_(P),
         adjacency_(adjacency),
         next_(static_cast<std::size_t>(P.rows()), -1),
@@ -403,7 +403,7 @@ class Augmenter2 {
   }
 
   const Eigen::MatrixX2d& P_;
-  const std::vector<std::vector<int>>& adjacency_;
+  const PointNeighbours& adjacency_;
   std::vector<Kernel2::Point_2> exact_;
   std::vector<int> next_;
   BoxGrid points_;
@@ -413,7 +413,7 @@ class Augmenter2 {
 
 }  // namespace
 
-Augmentation augment_constriction(const Eigen::MatrixX2d& points, const std::vector<std::vector<int>>& adjacency,
+Augmentation augment_constriction(const Eigen::MatrixX2d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX2i& boundary, std::vector<int>& interior_vertices,
                                   const AugmentationOptions& options) {
   if (interior_vertices.empty()) return {};

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace scanstation {
@@ -25,6 +26,17 @@ struct Augmentation {
   std::size_t carved = 0;
 };
 
+/// The Delaunay neighbours of every point in one array (compressed rows):
+/// those of v are list[start[v] .. start[v + 1]). A vector per point costs
+/// about twice the memory (growth slack and allocator headers), and
+/// augmentation runs at the reconstruction's memory peak.
+struct PointNeighbours {
+  std::vector<int> start, list;
+  std::span<const int> operator[](std::size_t v) const {
+    return {list.data() + start[v], static_cast<std::size_t>(start[v + 1] - start[v])};
+  }
+};
+
 /// points             #P by 3 positions (distinct)
 /// adjacency          per point, its Delaunay neighbours (candidates are the
 ///                    boundary triangles within two Delaunay edges of a point)
@@ -41,7 +53,7 @@ struct Augmentation {
 /// one"; here that is an exact intersection test). Then the boundary stays a
 /// closed, simple, 2-manifold of genus 0. Among allowed carves the smallest
 /// γ-indicator (Definition 5.2) goes first, as in constriction.
-Augmentation augment_constriction(const Eigen::MatrixX3d& points, const std::vector<std::vector<int>>& adjacency,
+Augmentation augment_constriction(const Eigen::MatrixX3d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
                                   const AugmentationOptions& options = {});
 
@@ -54,7 +66,7 @@ namespace scanstation {
 /// removes the triangle (a, b, v) behind an edge (a, b) and brings the
 /// interior point v onto the polygon, under the same γ([-1,1],[c0,1]),
 /// emptiness and non-crossing conditions as in 3D.
-Augmentation augment_constriction(const Eigen::MatrixX2d& points, const std::vector<std::vector<int>>& adjacency,
+Augmentation augment_constriction(const Eigen::MatrixX2d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX2i& boundary, std::vector<int>& interior_vertices,
                                   const AugmentationOptions& options = {});
 

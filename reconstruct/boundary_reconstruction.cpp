@@ -142,9 +142,10 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
 
 // Delaunay neighbours of every point, in no particular order. Linear: the
 // cells around each point (counting sort), then their vertices, each once
-// (a per-point stamp instead of sorting the ~7 copies of every neighbour).
+// (a per-point stamp instead of sorting the ~7 copies of every neighbour),
+// counted in a first pass so the list is allocated once at its size.
 template <int D>
-std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
+PointNeighbours adjacency(const DelaunayComplex<D>& dt) {
   const auto n = static_cast<std::size_t>(dt.points.rows());
   std::vector<std::size_t> start(n + 1, 0);
   for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
@@ -154,18 +155,29 @@ std::vector<std::vector<int>> adjacency(const DelaunayComplex<D>& dt) {
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
     for (int i = 0; i <= D; ++i) around[fill[static_cast<std::size_t>(dt.cells(c, i))]++] = static_cast<int>(c);
-  std::vector<std::vector<int>> out(n);
   std::vector<int> seen(n, -1);
-  for (std::size_t v = 0; v < n; ++v) {
-    seen[v] = static_cast<int>(v);
-    for (std::size_t k = start[v]; k < start[v + 1]; ++k)
-      for (int i = 0; i <= D; ++i) {
-        const int u = dt.cells(around[k], i);
-        if (seen[static_cast<std::size_t>(u)] == static_cast<int>(v)) continue;
-        seen[static_cast<std::size_t>(u)] = static_cast<int>(v);
-        out[v].push_back(u);
-      }
-  }
+  // f(v, u) for every neighbour u of v, each once; the stamp is v's number
+  // in pass 0 and −2 − v in pass 1.
+  const auto each_neighbour = [&](int pass, auto&& f) {
+    for (std::size_t v = 0; v < n; ++v) {
+      const int stamp = pass == 0 ? static_cast<int>(v) : -2 - static_cast<int>(v);
+      seen[v] = stamp;
+      for (std::size_t k = start[v]; k < start[v + 1]; ++k)
+        for (int i = 0; i <= D; ++i) {
+          const int u = dt.cells(around[k], i);
+          if (seen[static_cast<std::size_t>(u)] == stamp) continue;
+          seen[static_cast<std::size_t>(u)] = stamp;
+          f(v, u);
+        }
+    }
+  };
+  PointNeighbours out;
+  out.start.assign(n + 1, 0);
+  each_neighbour(0, [&](std::size_t v, int) { ++out.start[v + 1]; });
+  for (std::size_t v = 0; v < n; ++v) out.start[v + 1] += out.start[v];
+  out.list.resize(static_cast<std::size_t>(out.start[n]));
+  std::vector<int> next(out.start.begin(), out.start.end() - 1);
+  each_neighbour(1, [&](std::size_t v, int u) { out.list[static_cast<std::size_t>(next[v]++)] = u; });
   return out;
 }
 

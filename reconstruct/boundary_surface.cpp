@@ -73,20 +73,19 @@ Eigen::AlignedBox3d BoundarySurface::box(std::initializer_list<int> ids) const {
 int BoundarySurface::add_face(const Triangle& t) {
   const int id = static_cast<int>(faces_.size());
   faces_.push_back(t);
-  face_boxes_.push_back(box({t[0], t[1], t[2]}));
   alive_.push_back(1);
   for (const int v : t) {
     faces_at_[static_cast<std::size_t>(v)].push_back(id);
     on_boundary_[static_cast<std::size_t>(v)] = 1;
   }
-  faces_grid_.insert(id, face_boxes_.back());
+  faces_grid_.insert(id, box({t[0], t[1], t[2]}));
   return id;
 }
 
 void BoundarySurface::remove_face(int id) {
   alive_[static_cast<std::size_t>(id)] = 0;
   const Triangle& t = faces_[static_cast<std::size_t>(id)];
-  faces_grid_.erase(id, face_boxes_[static_cast<std::size_t>(id)]);
+  faces_grid_.erase(id, box({t[0], t[1], t[2]}));
   for (const int v : t) {
     auto& at = faces_at_[static_cast<std::size_t>(v)];
     at.erase(std::remove(at.begin(), at.end(), id), at.end());
@@ -144,9 +143,10 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
   }
   return !faces_grid_.visit(region, [&](int g) {
     if (!alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return true;
-    const Eigen::AlignedBox3d& other_box = face_boxes_[static_cast<std::size_t>(g)];
+    const Triangle& other = face(g);
+    const Eigen::AlignedBox3d other_box = box({other[0], other[1], other[2]});
     for (std::size_t k = 0; k < fresh.size(); ++k)
-      if (boxes[k].intersects(other_box) && improper(fresh[k], face(g))) return false;
+      if (boxes[k].intersects(other_box) && improper(fresh[k], other)) return false;
     return true;
   });
 }

@@ -161,6 +161,7 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
   Delaunay3 dt;
   insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(
       dt, input, [](int, Delaunay3::Vertex_handle) {});
+  std::vector<std::pair<Kernel::Point_3, int>>().swap(input);  // the copy below is the memory peak
   if (dt.dimension() < 3)
     throw InvalidInput(std::string("all points lie ") + (dt.dimension() < 2 ? "on one line" : "in one plane") +
                        ": no polyhedron encloses them");
