@@ -6,8 +6,8 @@
 //   build/bench/footprint_compare [--sizes 10000,100000,1000000] [MESH.off ...]
 //
 // Inputs: points on an ellipsoid (radii 3, 2, 1) of each size, then the
-// vertices of each mesh file. For every input a baseline child only loads
-// the points; "memory" is each job's peak minus that baseline.
+// vertices of each mesh file. "Memory" is the resident memory a job adds to
+// its child after the points are loaded, at its peak.
 #include "core/io/mesh_io.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/random.h"
@@ -15,13 +15,14 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
-#include <sys/resource.h>
+#include <malloc.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -43,11 +44,23 @@ Eigen::MatrixX3d ellipsoid_points(Eigen::Index n) {
 
 struct Measure {
   double seconds = 0;   // wall time of the job inside the child
-  double peak_mib = 0;  // the child's peak resident memory
+  double peak_mib = 0;  // resident memory the job added at its peak
 };
 
-// Runs load() then job() in a child; the child reports the job's wall time
-// through a pipe, the kernel reports its peak memory.
+// A field of /proc/self/status in KiB (VmRSS, VmHWM), −1 if unreadable.
+double status_kib(const std::string& field) {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1));
+  return -1;
+}
+
+// Runs load() then job() in a child, which reports through a pipe the job's
+// wall time and the resident memory it added at its peak: the peak (VmHWM)
+// is reset after loading (clear_refs 5, Linux ≥ 4.0) to the resident size,
+// which is then subtracted, so neither the input nor what loading left behind counts
+// (ru_maxrss minus a load-only child's, the former measure, mixed in the
+// parse buffers and was ±1 MiB off on the small meshes).
 Measure in_child(const std::function<Eigen::MatrixX3d()>& load, const std::function<void(const Eigen::MatrixX3d&)>& job) {
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
@@ -55,21 +68,27 @@ Measure in_child(const std::function<Eigen::MatrixX3d()>& load, const std::funct
   if (pid == 0) {
     close(fds[0]);
     const Eigen::MatrixX3d points = load();
+    malloc_trim(0);
+    const double loading_peak = status_kib("VmHWM");
+    std::ofstream("/proc/self/clear_refs") << "5";
+    const double before = status_kib("VmHWM");  // now the present resident size
+    if (before >= loading_peak && loading_peak > status_kib("VmRSS") + 1024) _exit(2);  // the peak was not reset
     const auto start = std::chrono::steady_clock::now();
     job(points);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (write(fds[1], &s, sizeof s) != sizeof s) _exit(1);
+    const double result[2] = {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                              (status_kib("VmHWM") - before) / 1024.0};
+    if (write(fds[1], result, sizeof result) != sizeof result) _exit(1);
     _exit(0);
   }
   close(fds[1]);
-  Measure m;
-  if (read(fds[0], &m.seconds, sizeof m.seconds) != sizeof m.seconds) m.seconds = -1;
+  double result[2] = {-1, -1};
+  const bool reported = read(fds[0], result, sizeof result) == sizeof result;
   close(fds[0]);
   int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  m.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
-  return m;
+  waitpid(pid, &status, 0);
+  if (!reported) throw std::runtime_error("a measuring child failed (exit status " + std::to_string(status) +
+                                          "; status 2: /proc/self/clear_refs did not reset the peak)");
+  return {result[0], result[1]};
 }
 
 void cgal_delaunay(const Eigen::MatrixX3d& P) {
@@ -88,9 +107,8 @@ void reconstruct(const Eigen::MatrixX3d& P) {
 }
 
 void row(const std::string& name, const std::function<Eigen::MatrixX3d()>& load) {
-  const Measure base = in_child(load, [](const Eigen::MatrixX3d&) {});
   const Measure dt = in_child(load, cgal_delaunay), ours = in_child(load, reconstruct);
-  const double dt_mib = dt.peak_mib - base.peak_mib, ours_mib = ours.peak_mib - base.peak_mib;
+  const double dt_mib = dt.peak_mib, ours_mib = ours.peak_mib;
   const Eigen::Index n = load().rows();
   std::printf("%-22s %9lld | %8.3f %8.3f %6.2f | %8.1f %8.1f %6.2f | %7.2f\n", name.c_str(), static_cast<long long>(n),
               dt.seconds, ours.seconds, ours.seconds / dt.seconds, dt_mib, ours_mib, ours_mib / dt_mib,
