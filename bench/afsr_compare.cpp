@@ -11,6 +11,7 @@
 //
 // Prints one table row per mesh: time, closed / genus, every point on the
 // boundary, triangle recall — for constriction and for AFSR — and the means.
+#include "bench/guarded_main.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_topology.h"
 #include "core/triangle_recall.h"
@@ -76,7 +77,7 @@ Row advancing_front(const TriangleMesh& truth, const Eigen::MatrixX3d& points) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   double noise = 0.0;
   ReconstructionOptions options = surface_defaults();  // as the command does in 3D
   std::vector<std::string> files;
@@ -124,4 +125,7 @@ int main(int argc, char** argv) {
   const double n = static_cast<double>(std::max<std::size_t>(files.size(), 1));
   std::printf("closed genus-0 through all points: ours %d of %zu, AFSR %d of %zu; mean recall: ours %.3f, AFSR %.3f\n",
               ok_ours, files.size(), ok_afsr, files.size(), sum_ours / n, sum_afsr / n);
+  return 0;
 }
+
+int main(int argc, char** argv) { return scanstation::bench::guarded_main(argc, argv, run); }

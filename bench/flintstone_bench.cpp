@@ -10,6 +10,7 @@
 //
 // Times are wall-clock seconds, except the query loops: thread CPU seconds,
 // the best of R alternating runs of ours and CGAL's. Quote them as ratios.
+#include "bench/guarded_main.h"
 #include "core/io/mesh_io.h"
 #include "reconstruct/flintstone_inclusion.h"
 #include "reconstruct/flintstone_intersection.h"
@@ -137,7 +138,7 @@ void run(const std::string& name, const TriangleMesh& mesh, const Options& optio
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   Options options;
   int max_subdivisions = 8;
   std::vector<std::string> files;
@@ -155,3 +156,5 @@ int main(int argc, char** argv) {
     run(std::filesystem::path(file).filename().string(), io::read_mesh(file), options);
   return 0;
 }
+
+int main(int argc, char** argv) { return scanstation::bench::guarded_main(argc, argv, run); }

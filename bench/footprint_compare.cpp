@@ -8,6 +8,7 @@
 // Inputs: points on an ellipsoid (radii 3, 2, 1) of each size, then the
 // vertices of each mesh file. "Memory" is the resident memory a job adds to
 // its child after the points are loaded, at its peak.
+#include "bench/guarded_main.h"
 #include "core/io/mesh_io.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/random.h"
@@ -65,19 +66,24 @@ Measure in_child(const std::function<Eigen::MatrixX3d()>& load, const std::funct
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = fork();
-  if (pid == 0) {
+  if (pid == 0) {  // the child leaves by _exit only: never through the parent's stack or its atexit handlers
     close(fds[0]);
-    const Eigen::MatrixX3d points = load();
-    malloc_trim(0);
-    const double loading_peak = status_kib("VmHWM");
-    std::ofstream("/proc/self/clear_refs") << "5";
-    const double before = status_kib("VmHWM");  // now the present resident size
-    if (before >= loading_peak && loading_peak > status_kib("VmRSS") + 1024) _exit(2);  // the peak was not reset
-    const auto start = std::chrono::steady_clock::now();
-    job(points);
-    const double result[2] = {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                              (status_kib("VmHWM") - before) / 1024.0};
-    if (write(fds[1], result, sizeof result) != sizeof result) _exit(1);
+    try {
+      const Eigen::MatrixX3d points = load();
+      malloc_trim(0);
+      const double loading_peak = status_kib("VmHWM");
+      std::ofstream("/proc/self/clear_refs") << "5";
+      const double before = status_kib("VmHWM");  // now the present resident size
+      if (before >= loading_peak && loading_peak > status_kib("VmRSS") + 1024) _exit(2);  // the peak was not reset
+      const auto start = std::chrono::steady_clock::now();
+      job(points);
+      const double result[2] = {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                                (status_kib("VmHWM") - before) / 1024.0};
+      if (write(fds[1], result, sizeof result) != sizeof result) _exit(1);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "measuring child: %s\n", e.what());
+      _exit(3);
+    }
     _exit(0);
   }
   close(fds[1]);
@@ -86,8 +92,11 @@ Measure in_child(const std::function<Eigen::MatrixX3d()>& load, const std::funct
   close(fds[0]);
   int status = 0;
   waitpid(pid, &status, 0);
-  if (!reported) throw std::runtime_error("a measuring child failed (exit status " + std::to_string(status) +
-                                          "; status 2: /proc/self/clear_refs did not reset the peak)");
+  if (!reported)
+    throw std::runtime_error("a measuring child failed (" +
+                             (WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
+                                                : "signal " + std::to_string(WTERMSIG(status))) +
+                                          "; 2: /proc/self/clear_refs did not reset the peak, 3: the job threw)");
   return {result[0], result[1]};
 }
 
@@ -107,9 +116,9 @@ void reconstruct(const Eigen::MatrixX3d& P) {
 }
 
 void row(const std::string& name, const std::function<Eigen::MatrixX3d()>& load) {
+  const Eigen::Index n = load().rows();  // a bad input fails here, not in a child
   const Measure dt = in_child(load, cgal_delaunay), ours = in_child(load, reconstruct);
   const double dt_mib = dt.peak_mib, ours_mib = ours.peak_mib;
-  const Eigen::Index n = load().rows();
   std::printf("%-22s %9lld | %8.3f %8.3f %6.2f | %8.1f %8.1f %6.2f | %7.2f\n", name.c_str(), static_cast<long long>(n),
               dt.seconds, ours.seconds, ours.seconds / dt.seconds, dt_mib, ours_mib, ours_mib / dt_mib,
               1e6 * ours.seconds / static_cast<double>(n));
@@ -118,7 +127,7 @@ void row(const std::string& name, const std::function<Eigen::MatrixX3d()>& load)
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::vector<Eigen::Index> sizes = {10000, 100000, 1000000};
   std::vector<std::string> files;
   for (int a = 1; a < argc; ++a) {
@@ -135,4 +144,7 @@ int main(int argc, char** argv) {
   for (const Eigen::Index n : sizes) row("ellipsoid", [n] { return ellipsoid_points(n); });
   for (const std::string& file : files)
     row(std::filesystem::path(file).filename().string(), [file] { return io::read_mesh(file).vertices.positions; });
+  return 0;
 }
+
+int main(int argc, char** argv) { return scanstation::bench::guarded_main(argc, argv, run); }
