@@ -95,14 +95,15 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
   return out;
 }
 
-// Which flips need no exact test (see flip_boundary): the surface bounds a
-// union of Delaunay cells except inside the tetrahedra of the flips that
-// were not a cell's (foreign: their new triangles are no cell faces). A flip
-// whose tetrahedron is a cell whose box misses every foreign box adds or
-// removes that cell: its new triangles are faces of the Delaunay complex and
-// meet the other cell faces only in shared vertices and edges, no foreign
-// triangle comes near, and a Delaunay cell holds no point. The cells around
-// each point by counting sort (about 25 per point).
+// Which flips need no exact test (see flip_boundary): every triangle of the
+// surface is a face of the Delaunay complex except the foreign ones — those
+// augmentation carved (§5.4: its tetrahedra are no cells) and those of the
+// flips whose tetrahedron was not a cell. A flip whose tetrahedron is a cell
+// whose box misses every foreign box adds or removes that cell: its new
+// triangles are faces of the complex and meet the other cell faces only in
+// shared vertices and edges, no foreign triangle comes near, and a Delaunay
+// cell holds no point. The cells around each point by counting sort (about
+// 25 per point).
 class CellFlips {
  public:
   CellFlips(const DelaunayComplex<3>& dt, BoxGrid foreign)
@@ -123,8 +124,26 @@ class CellFlips {
     return foreign_.visit(box, [](int) { return false; });
   }
   void add_foreign(const Eigen::AlignedBox3d& box) { foreign_.insert(foreign_count_++, box); }
+  /// The surface's triangles that are no faces of the complex become foreign.
+  void add_foreign_faces(const BoundarySurface& surface) {
+    for (std::size_t f = 0; f < surface.face_slots(); ++f) {
+      const Triangle& t = surface.face(static_cast<int>(f));
+      if (surface.alive(static_cast<int>(f)) && !is_face(t[0], t[1], t[2])) add_foreign(surface.box({t[0], t[1], t[2]}));
+    }
+  }
 
  private:
+  bool is_face(int a, int b, int c) const {
+    for (std::size_t k = start_[static_cast<std::size_t>(a)]; k < start_[static_cast<std::size_t>(a) + 1]; ++k) {
+      int found = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int v = dt_.cells(around_[k], i);
+        found += v == b || v == c;
+      }
+      if (found == 2) return true;
+    }
+    return false;
+  }
   bool is_cell(int a, int b, int c, int d) const {
     for (std::size_t k = start_[static_cast<std::size_t>(a)]; k < start_[static_cast<std::size_t>(a) + 1]; ++k) {
       int found = 0;
@@ -214,7 +233,10 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
   }
   std::sort(fixed.begin(), fixed.end());
   std::optional<CellFlips> cell_flips;
-  if (cells) cell_flips.emplace(*cells, surface_grid(points));
+  if (cells) {
+    cell_flips.emplace(*cells, surface_grid(points));
+    cell_flips->add_foreign_faces(surface);
+  }
   CellFlips* untested = cell_flips ? &*cell_flips : nullptr;
   std::size_t flips = flip_pass(surface, by_area, FlipCriterion::area, fixed, min_gain, untested);
   if (delaunay) {

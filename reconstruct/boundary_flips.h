@@ -29,17 +29,19 @@ enum class FlipCriterion {
 ///           flip into a shallow dent lowers the area by a hair, and such
 ///           dents are not the surface; 1e-3 keeps random samples of an
 ///           ellipsoid untouched while caps over concavities still go
-/// cells     optional: Delaunay cells (over `points`) of which `boundary` is
-///           the boundary of a union, as constriction leaves it
+/// cells     optional: the Delaunay cells over `points` from which `boundary`
+///           was constricted (and perhaps augmented: its triangles that are
+///           no faces of them are found and kept away from)
 /// An edge (a, b) between (a, b, c) and (b, a, d) becomes (c, d) when that
 /// lowers the criterion (area: by min_gain), (c, d) is not already an edge, the tetrahedron
 /// (a, b, c, d) holds no other point, and the new triangles meet the surface
 /// only in shared vertices and edges (exact tests). With `cells`, a flip whose
-/// tetrahedron is one of them, away from the tetrahedra of earlier flips that
-/// were not, needs no test: it adds that cell to the union or takes it away,
-/// its new triangles are faces of the Delaunay complex, which meet the other
-/// cell faces properly, and a Delaunay cell holds no point (the same flips as
-/// with every flip tested, faster: docs/design.md). Returns the flips made.
+/// tetrahedron is one of them, away from every triangle that is no cell face
+/// (augmentation's, and those of earlier flips whose tetrahedron was no
+/// cell), needs no test: its new triangles are faces of the Delaunay complex,
+/// which meet the other cell faces properly, and a Delaunay cell holds no
+/// point (the same flips as with every flip tested, faster: docs/design.md).
+/// Returns the flips made.
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain = 1e-3,
                           const DelaunayComplex<3>* cells = nullptr);

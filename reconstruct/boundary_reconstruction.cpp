@@ -226,9 +226,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   }
   if (options.flips) {
     const auto start = std::chrono::steady_clock::now();
-    // Without carves the boundary is still that of the kept Delaunay cells.
-    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3,
-                            s.carved == 0 ? &dt : nullptr);
+    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt);
     s.flip_seconds = seconds_since(start);
   }
   std::vector<Eigen::Index> kept;

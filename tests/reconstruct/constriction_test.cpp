@@ -181,8 +181,9 @@ TEST(Constriction3, DelaunayFlipsKeepTheGuaranteesAndRecoverDelaunayMeshes) {
 // A flip that adds a Delaunay cell to the solid constriction left, or takes
 // one away, skips the exact tests (it cannot fail them): with the cells given
 // the flips are the same, one by one, as with every flip tested — on real
-// meshes (area flips, and Delaunay flips after them) and on a random sample
-// of an ellipsoid, where nearly every Delaunay flip is a cell's.
+// meshes (area flips, and Delaunay flips after them), on a random sample of
+// an ellipsoid, where nearly every Delaunay flip is a cell's, and on real
+// meshes where augmentation carved.
 TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
   std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
   for (const std::string name : {"cactus", "triceratops", "ellipe0.003", "hand"})
@@ -206,6 +207,24 @@ TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
       if (criterion == FlipCriterion::area_then_delaunay) {
         EXPECT_GT(flips, 0u) << name;
       }
+    }
+  }
+  // After augmentation carved (§5.4), its triangles are no cell faces: flips
+  // near them take the tests, the others still skip them.
+  for (const std::string name : {"oblong", "homer", "bull"}) {
+    const Eigen::MatrixX3d P = io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions;
+    ReconstructionOptions no_flips = surface_defaults();
+    no_flips.flips.reset();
+    const SurfaceReconstruction r = reconstruct_surface(P, no_flips);
+    ASSERT_GT(r.statistics.carved, 0u) << name;
+    ASSERT_EQ(r.mesh.vertices.positions.rows(), P.rows()) << name;  // no duplicates: the same numbering
+    const DelaunayComplex<3> dt = delaunay_complex(P);
+    for (const FlipCriterion criterion : {FlipCriterion::area, FlipCriterion::area_then_delaunay}) {
+      Eigen::MatrixX3i tested = r.mesh.faces, fast = r.mesh.faces;
+      const std::size_t flips = flip_boundary(dt.points, tested, criterion, Eigen::MatrixXi(0, 3));
+      EXPECT_GT(flips, 0u) << name;
+      EXPECT_EQ(flip_boundary(dt.points, fast, criterion, Eigen::MatrixXi(0, 3), 1e-3, &dt), flips) << name;
+      EXPECT_EQ(fast, tested) << name;
     }
   }
 }
