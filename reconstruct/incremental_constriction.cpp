@@ -137,7 +137,11 @@ struct IncrementalConstriction::State {
   std::vector<Cell> walk;
   unsigned visit_stamp = 0;
 
-  bool kept(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
+  // Infinite cells are never kept: their flag is cleared where they appear
+  // (constrict_all for all of them; star() for those around new points —
+  // every cell insertion adds to the hull has a new point), so the flag alone
+  // answers without testing the cell's vertices against the infinite one.
+  bool kept(Cell c) const { return c->info().kept; }
 
   struct Star {
     const Cell* first;
@@ -164,7 +168,10 @@ struct IncrementalConstriction::State {
         const Cell c = walk.back();
         walk.pop_back();
         if (!dt.is_infinite(c)) star_cells.push_back(c);
-        else on_hull = 1;
+        else {
+          on_hull = 1;
+          c->info().kept = 0;
+        }
         for (int i = 0; i < 4; ++i) {
           if (c->vertex(i) == v) continue;
           const Cell n = c->neighbor(i);
@@ -477,7 +484,7 @@ struct IncrementalConstriction::State {
       for (int k = 0; k < 4; ++k) {
         L.dt.cells(i, k) = local_vertex[static_cast<std::size_t>(c->vertex(k)->info())];
         const Cell n = c->neighbor(k);
-        L.dt.neighbors(i, k) = dt.is_infinite(n) ? -1 : n->info().local;
+        L.dt.neighbors(i, k) = n->info().local;  // −1 for infinite cells too: they are in no complex
       }
     }
     if (surround) {
@@ -617,6 +624,9 @@ struct IncrementalConstriction::State {
   // kept, constricted as a whole, exactly as reconstruct_surface does.
   void constrict_all(BatchStats& stats) {
     std::vector<Cell> all;
+    std::vector<Cell> hull;
+    dt.incident_cells(dt.infinite_vertex(), std::back_inserter(hull));
+    for (const Cell c : hull) c->info().kept = 0;
     for (const Cell c : dt.finite_cell_handles()) {
       c->info().kept = 1;
       all.push_back(c);
