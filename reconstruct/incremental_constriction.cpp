@@ -137,7 +137,11 @@ struct IncrementalConstriction::State {
   std::vector<Cell> walk;
   unsigned visit_stamp = 0;
 
-  bool kept(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
+  // Infinite cells are never kept: their flag is cleared where they appear
+  // (constrict_all for all of them; star() for those around new points —
+  // every cell insertion adds to the hull has a new point), so the flag alone
+  // answers without testing the cell's vertices against the infinite one.
+  bool kept(Cell c) const { return c->info().kept; }
 
   struct Star {
     const Cell* first;
@@ -164,7 +168,10 @@ struct IncrementalConstriction::State {
         const Cell c = walk.back();
         walk.pop_back();
         if (!dt.is_infinite(c)) star_cells.push_back(c);
-        else on_hull = 1;
+        else {
+          on_hull = 1;
+          c->info().kept = 0;
+        }
         for (int i = 0; i < 4; ++i) {
           if (c->vertex(i) == v) continue;
           const Cell n = c->neighbor(i);
@@ -477,7 +484,7 @@ struct IncrementalConstriction::State {
       for (int k = 0; k < 4; ++k) {
         L.dt.cells(i, k) = local_vertex[static_cast<std::size_t>(c->vertex(k)->info())];
         const Cell n = c->neighbor(k);
-        L.dt.neighbors(i, k) = dt.is_infinite(n) ? -1 : n->info().local;
+        L.dt.neighbors(i, k) = n->info().local;  // −1 for infinite cells too: they are in no complex
       }
     }
     if (surround) {
@@ -556,11 +563,41 @@ struct IncrementalConstriction::State {
     return n;
   }
 
+  // Whether a frozen cell of L is within two steps of a point the local
+  // constriction locked (interior, not pending): a cell around it or around
+  // one of its neighbours. Only then can releasing kept cells around the
+  // region bring it on. Measured (docs/design.md): every lock at 100k and 1M
+  // points in scan order was a point whose whole star was re-decided and
+  // whose way out was held by the rules themselves — a cell with its one
+  // boundary face opposite the point, held by the γ-guide, or blocked by
+  // removability (§5.3) — the points a from-scratch constriction of the same
+  // points leaves interior too, so the released ring only doubled the work.
+  bool frozen_near(const LocalComplex& L, const std::vector<char>& interior) const {
+    const auto& cells = L.dt.cells;
+    std::vector<char> near(L.vertices.size(), 0);
+    for (std::size_t k = 0; k < L.core_vertices; ++k)
+      near[k] = interior[k] && !pending[static_cast<std::size_t>(L.vertices[k]->info())];
+    for (int step = 0; step < 2; ++step) {  // near: the locked points, then their neighbours too
+      std::vector<char> grown = near;
+      for (Eigen::Index i = 0; i < cells.rows(); ++i) {
+        bool touches = false;
+        for (int k = 0; k < 4; ++k) touches = touches || near[static_cast<std::size_t>(cells(i, k))];
+        if (!touches) continue;
+        if (step == 1 && static_cast<std::size_t>(i) >= L.region && L.start.kept[static_cast<std::size_t>(i)]) return true;
+        for (int k = 0; k < 4; ++k) grown[static_cast<std::size_t>(cells(i, k))] = 1;
+      }
+      near = std::move(grown);
+    }
+    return false;
+  }
+
   // Constricts the region (kept cells around it frozen when `surround`);
   // keeps the result when every point of the region that is not pending
   // reached the boundary, or when `final`, and then, for a region `piece`
-  // ≥ 0 of a local repair, records f(v) at its points (record_faces).
-  // Returns whether they all did.
+  // ≥ 0 of a local repair, records f(v) at its points (record_faces); it
+  // keeps a locked result too when no frozen cell is near the points that
+  // locked (frozen_near: releasing a ring would not bring them on). Returns
+  // whether the result was kept.
   bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats, int piece = -1) {
     const LocalComplex L = local_complex(region, surround);
     stats.tetrahedra_touched += L.cells.size();
@@ -570,7 +607,9 @@ struct IncrementalConstriction::State {
     bool reached = true;
     for (std::size_t k = 0; k < L.core_vertices; ++k)
       reached = reached && (!interior[k] || pending[static_cast<std::size_t>(L.vertices[k]->info())]);
-    if (!reached && !final) return false;
+    // A lock no frozen cell is near is kept as it is (see frozen_near).
+    const bool held = !reached && !final && surround && !frozen_near(L, interior);
+    if (!reached && !final && !held) return false;
     for (std::size_t i = 0; i < L.region; ++i) L.cells[i]->info().kept = r.kept[i];
     for (std::size_t k = 0; k < L.core_vertices; ++k) {
       char& p = pending[static_cast<std::size_t>(L.vertices[k]->info())];
@@ -578,13 +617,16 @@ struct IncrementalConstriction::State {
       p = interior[k];
     }
     if (piece >= 0) record_faces(L, r, piece);
-    return reached;
+    return reached || held;
   }
 
   // The wider repair (and the first constriction): all of the convex hull
   // kept, constricted as a whole, exactly as reconstruct_surface does.
   void constrict_all(BatchStats& stats) {
     std::vector<Cell> all;
+    std::vector<Cell> hull;
+    dt.incident_cells(dt.infinite_vertex(), std::back_inserter(hull));
+    for (const Cell c : hull) c->info().kept = 0;
     for (const Cell c : dt.finite_cell_handles()) {
       c->info().kept = 1;
       all.push_back(c);

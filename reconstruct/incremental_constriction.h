@@ -50,8 +50,10 @@ struct BatchStats {
 /// on its own with the batch constriction (constrict(), the removability
 /// rules of §5.3 and the γ-indicator of Definition 5.2 with the options'
 /// selection rule), the kept cells around it frozen, until its points are on
-/// the boundary. If a part locks, the frozen ring around it is released
-/// (one ring); points even that cannot reach stay pending, and surface()
+/// the boundary. If a part locks with a frozen cell near a point it could
+/// not reach (within two steps), the frozen ring around it is released (one
+/// ring); a lock with none near is kept as it is (the γ-guide or §5.3 hold
+/// such a point, as from scratch). Points not reached stay pending, and surface()
 /// brings them to the boundary with the augmentation of §5.4 before the
 /// flips, as reconstruct_surface does. Only if the fill does not settle is
 /// the whole triangulation constricted again from its convex hull (counted
