@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -133,25 +134,14 @@ class CellFlips {
   }
 
  private:
-  bool is_face(int a, int b, int c) const {
+  bool is_face(int a, int b, int c) const { return cell_around(a, {b, c}); }
+  bool is_cell(int a, int b, int c, int d) const { return cell_around(a, {b, c, d}); }
+  // Whether a cell around point a holds every point of `others`.
+  bool cell_around(int a, std::initializer_list<int> others) const {
     for (std::size_t k = start_[static_cast<std::size_t>(a)]; k < start_[static_cast<std::size_t>(a) + 1]; ++k) {
-      int found = 0;
-      for (int i = 0; i < 4; ++i) {
-        const int v = dt_.cells(around_[k], i);
-        found += v == b || v == c;
-      }
-      if (found == 2) return true;
-    }
-    return false;
-  }
-  bool is_cell(int a, int b, int c, int d) const {
-    for (std::size_t k = start_[static_cast<std::size_t>(a)]; k < start_[static_cast<std::size_t>(a) + 1]; ++k) {
-      int found = 0;
-      for (int i = 0; i < 4; ++i) {
-        const int v = dt_.cells(around_[k], i);
-        found += v == b || v == c || v == d;
-      }
-      if (found == 3) return true;
+      std::size_t found = 0;
+      for (int i = 0; i < 4; ++i) found += std::find(others.begin(), others.end(), dt_.cells(around_[k], i)) != others.end();
+      if (found == others.size()) return true;
     }
     return false;
   }
