@@ -46,23 +46,23 @@ ReconstructionOptions renumbered(const ReconstructionOptions& options, const std
   return out;
 }
 
-// The points scaled by a power of two (exact, so every predicate answers as
-// before) to magnitudes near 1, where circumcentres and lens tests neither
-// overflow nor underflow: coordinates of 1e±200 behave like any others.
+// The power of two that scales the points (exactly, so every predicate
+// answers as before) to magnitudes near 1, where circumcentres and lens
+// tests neither overflow nor underflow: coordinates of 1e±200 behave like
+// any others. 1 when scaling down would push a coordinate below the normal
+// range, where it would lose bits (and distinct points could merge).
 template <int D>
-Eigen::Matrix<double, Eigen::Dynamic, D> unit_scaled(const Eigen::Matrix<double, Eigen::Dynamic, D>& P) {
+double unit_scale(const Eigen::Matrix<double, Eigen::Dynamic, D>& P) {
   const double largest = P.size() > 0 ? P.cwiseAbs().maxCoeff() : 0.0;
-  if (!(largest > 0.0)) return P;
+  if (!(largest > 0.0)) return 1.0;
   int exponent = 0;
   std::frexp(largest, &exponent);
   const double scale = std::ldexp(1.0, -exponent);
-  // Scaling down must not push any coordinate below the normal range, where
-  // it would lose bits (and distinct points could merge).
   double smallest = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < P.size(); ++i)
     if (P.data()[i] != 0.0) smallest = std::min(smallest, std::abs(P.data()[i]));
-  if (scale < 1.0 && smallest * scale < std::numeric_limits<double>::min() * 0x1p53) return P;
-  return P * scale;
+  if (scale < 1.0 && smallest * scale < std::numeric_limits<double>::min() * 0x1p53) return 1.0;
+  return scale;
 }
 
 void require_finite(const Eigen::MatrixXd& P) {
@@ -118,10 +118,15 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   s.input_points = points.rows();
   const auto start = std::chrono::steady_clock::now();
   Triangulated<D> out;
-  out.dt = distinct_delaunay(points, unit_scaled<D>(points), first, map);
+  const double scale = unit_scale<D>(points);
+  out.dt = distinct_delaunay(points, scale == 1.0 ? points : (points * scale).eval(), first, map);
   const auto distinct = static_cast<Eigen::Index>(first.size());
   s.duplicates_merged = points.rows() - distinct;
-  if (distinct == points.rows()) {
+  if constexpr (D == 2) {
+    // The complex holds the distinct points in its own (spatial) order; the
+    // power of two undoes exactly.
+    out.original = scale == 1.0 ? out.dt.points : (out.dt.points / scale).eval();
+  } else if (distinct == points.rows()) {  // 3D: first is increasing, here the identity
     out.original = points;
   } else {
     out.original.resize(distinct, D);

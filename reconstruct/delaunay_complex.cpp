@@ -117,13 +117,38 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
   require_points(static_cast<Eigen::Index>(first.size()), 3, "polygon");
   if (dt.dimension() < 2) throw InvalidInput("all points lie on one line: no polygon encloses them");
 
+  // The points renumbered in CGAL's vertex storage order, which is the
+  // spatial insertion order: constriction then reads the points of nearby
+  // cells from nearby memory (in input order they are scattered over the
+  // whole array when the input is unordered). Coordinates come from the
+  // vertices, bit for bit the input's.
   DelaunayComplex<2> out;
-  if (repeats.empty()) {
-    out.points = P;
+  out.points.resize(static_cast<Eigen::Index>(first.size()), 2);
+  std::vector<Eigen::Index> spatial_first(first.size());
+  int k = 0;
+  if (repeats.empty()) {  // first and map are the identity: no lookups
+    for (const auto v : dt.finite_vertex_handles()) {
+      const auto row = static_cast<std::size_t>(v->info());
+      spatial_first[static_cast<std::size_t>(k)] = static_cast<Eigen::Index>(row);
+      map[row] = k;
+      out.points(k, 0) = v->point().x();
+      out.points(k, 1) = v->point().y();
+      v->info() = k++;
+    }
   } else {
-    out.points.resize(static_cast<Eigen::Index>(first.size()), 2);
-    for (std::size_t k = 0; k < first.size(); ++k) out.points.row(static_cast<Eigen::Index>(k)) = P.row(first[k]);
+    std::vector<Eigen::Index> renumbered(first.size());
+    for (const auto v : dt.finite_vertex_handles()) {
+      const auto old = static_cast<std::size_t>(v->info());
+      spatial_first[static_cast<std::size_t>(k)] = first[old];
+      renumbered[old] = k;
+      out.points(k, 0) = v->point().x();
+      out.points(k, 1) = v->point().y();
+      v->info() = k++;
+    }
+    for (Eigen::Index& m : map) m = renumbered[static_cast<std::size_t>(m)];
   }
+  first = std::move(spatial_first);
+
   // Cells numbered in CGAL's storage order, infinite faces −1: one pass for
   // the numbers, one to copy (a neighbour may come later in that order).
   int id = 0;
@@ -144,11 +169,9 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
   std::vector<Eigen::Index> first, map;
   DelaunayComplex<2> out = delaunay_complex(P, first, map);
-  if (static_cast<Eigen::Index>(first.size()) < P.rows()) {  // back to rows of P
-    for (Eigen::Index c = 0; c < out.cells.rows(); ++c)
-      for (int i = 0; i < 3; ++i) out.cells(c, i) = static_cast<int>(first[static_cast<std::size_t>(out.cells(c, i))]);
-    out.points = P;
-  }
+  for (Eigen::Index c = 0; c < out.cells.rows(); ++c)  // back to rows of P
+    for (int i = 0; i < 3; ++i) out.cells(c, i) = static_cast<int>(first[static_cast<std::size_t>(out.cells(c, i))]);
+  out.points = P;
   return out;
 }
 

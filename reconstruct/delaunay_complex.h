@@ -40,10 +40,13 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 
 /// The Delaunay triangulation of the distinct rows of P, the duplicates found
 /// on the way: CGAL's insertion meets a repeated point at the vertex already
-/// there, so no separate pass over the points is needed.
-/// first  (output) the rows of P that are first occurrences, increasing
-/// map    (output) #P entries: map[i] is the index into `first` of the row
-///        equal to P.row(i) (−0.0 and +0.0 count as equal), as unique_points
+/// there, so no separate pass over the points is needed. The points are
+/// numbered in spatial order (CGAL's insertion order), so that cells close
+/// together read points close together in memory.
+/// first  (output) per point of the complex, the row of P it is (the first
+///        occurrence of its value)
+/// map    (output) #P entries: map[i] is the point of the complex equal to
+///        P.row(i) (−0.0 and +0.0 count as equal)
 /// Returns the complex of the points P.row(first[k]) (cells index k). Throws
 /// InvalidInput for fewer than 3 distinct points or all points on a line.
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
