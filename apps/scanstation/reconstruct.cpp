@@ -12,17 +12,23 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <optional>
 
 namespace scanstation::app {
 
 namespace {
 
-nlohmann::json statistics_json(const BoundaryStatistics& s) {
+// source: the input row of each distinct point, so that the points left
+// inside are named as the user numbers them (0-based input rows).
+nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Eigen::Index>& source) {
+  std::vector<Eigen::Index> interior_rows;
+  for (const int v : s.interior_vertices) interior_rows.push_back(source[static_cast<std::size_t>(v)]);
+  std::sort(interior_rows.begin(), interior_rows.end());
   return {{"points", s.input_points},
           {"duplicates_merged", s.duplicates_merged},
           {"boundary_vertices", s.boundary_vertices},
-          {"interior_vertices", s.interior_vertices},
+          {"interior_vertices", interior_rows},
           {"all_on_boundary", s.all_on_boundary},
           {"delaunay_cells", s.delaunay_cells},
           {"removed_cells", s.removed_cells},
@@ -122,7 +128,7 @@ class ReconstructCommand final : public Command {
       io::write_polygon(output_, r.polygon, write);
       if (svg_) io::write_file_atomically(*svg_, boundary_svg(r), context.overwrite);
       if (interior_) write_interior_2d(r, write);
-      result = statistics_json(r.statistics);
+      result = statistics_json(r.statistics, r.source);
       result["boundary"] = describe(r.polygon);
       result["area"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
@@ -144,7 +150,7 @@ class ReconstructCommand final : public Command {
         io::write_file_atomically(*interior_, io::write_vtk_cells(r.mesh.vertices.positions, r.interior),
                                   context.overwrite);
       }
-      result = statistics_json(r.statistics);
+      result = statistics_json(r.statistics, r.source);
       result["boundary"] = describe(r.mesh);
       result["volume"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;

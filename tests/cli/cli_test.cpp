@@ -171,6 +171,17 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
   r = scanstation("reconstruct " + path(dir / "square.xy") + " -o " + path(dir / "q.xy") + " --svg " + path(dir / "q.png"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr(".svg"));
+  {  // twelve points on which 2D constriction locks with one point inside (row 8)
+    std::ofstream(dir / "locks.xy") << "0.914 0.137\n0.556 0.483\n0.959 0.380\n0.447 0.577\n0.382 0.912\n0.879 0.724\n"
+                                       "0.056 0.990\n0.549 0.598\n0.542 0.516\n0.931 0.273\n0.142 1.000\n0.261 0.278\n";
+  }
+  r = scanstation("reconstruct " + path(dir / "locks.xy") + " -o " + path(dir / "l.xy") + " --augment off --report " +
+                  path(dir / "l.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = nlohmann::json::parse(slurp(dir / "l.json"));
+  EXPECT_EQ(report["result"]["boundary"]["vertices"], 11);
+  EXPECT_EQ(report["result"]["interior_vertices"], nlohmann::json::array({8}));  // input rows, not internal numbers
+  EXPECT_THAT(slurp(dir / "l.xy"), testing::Not(testing::HasSubstr("0.542 0.516")));
 }
 
 // Viewpoints: each point of a dumbbell seen from straight outside its own
@@ -225,6 +236,28 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   EXPECT_EQ(report["result"]["all_on_boundary"], false);
   EXPECT_THAT(r.out, testing::HasSubstr("locked"));
   EXPECT_THAT(slurp(dir / "a.vtk"), testing::HasSubstr("CELL_TYPES"));
+  {  // the points left inside are reported as input rows: the vertices no triangle uses
+    std::istringstream off(slurp(dir / "a.off"));
+    std::string magic;
+    std::size_t vertices = 0, faces = 0, edges = 0;
+    off >> magic >> vertices >> faces >> edges;
+    double coordinate = 0;
+    for (std::size_t k = 0; k < 3 * vertices; ++k) off >> coordinate;
+    std::vector<char> used(vertices, 0);
+    for (std::size_t f = 0; f < faces; ++f) {
+      std::size_t n = 0, v = 0;
+      off >> n;
+      for (std::size_t k = 0; k < n; ++k) {
+        off >> v;
+        used[v] = 1;
+      }
+    }
+    std::vector<long long> unused;
+    for (std::size_t v = 0; v < vertices; ++v)
+      if (!used[v]) unused.push_back(static_cast<long long>(v));
+    ASSERT_FALSE(unused.empty());
+    EXPECT_EQ(report["result"]["interior_vertices"].get<std::vector<long long>>(), unused);
+  }
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "b.off") + " --method gamma --report " + path(dir / "b.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   report = nlohmann::json::parse(slurp(dir / "b.json"));
