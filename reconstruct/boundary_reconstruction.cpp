@@ -303,6 +303,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   for (Eigen::Index e = 0; e < c.boundary.rows(); ++e) next[static_cast<std::size_t>(c.boundary(e, 0))] = c.boundary(e, 1);
   const int start_vertex = c.boundary(0, 0);
   int v = start_vertex;
+  out.order.reserve(static_cast<std::size_t>(c.boundary.rows()));
   do {
     out.order.push_back(v);
     v = next[static_cast<std::size_t>(v)];
@@ -320,8 +321,8 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   for (std::size_t k = 0; k < kept.size(); ++k) out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
   if (s.carved > 0) out.interior.resize(0, 3);  // carved triangles overlap Delaunay cells
   s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
-  out.delaunay = dt.cells;
   fill_statistics(s, dt, c);
+  out.delaunay = std::move(triangulated.dt.cells);  // dt is not used after this
   s.kept_faces_on_boundary = faces_on(options.constriction.keep, c.boundary);
   return out;
 }

@@ -102,7 +102,7 @@ struct CurveReconstruction {
   Polygon2 polygon;
   std::vector<int> order;
   Eigen::MatrixX3i interior;
-  Eigen::MatrixX3i delaunay;
+  DelaunayComplex<2>::Cells delaunay;
   BoundaryStatistics statistics;
 };
 

@@ -13,7 +13,8 @@ namespace scanstation {
 
 namespace {
 // Distinct undirected edges of a set of triangles.
-Eigen::MatrixX2i edges_of(const Eigen::MatrixX3i& T) {
+template <typename Triangles>
+Eigen::MatrixX2i edges_of(const Triangles& T) {
   std::vector<std::array<int, 2>> e;
   for (Eigen::Index t = 0; t < T.rows(); ++t)
     for (int k = 0; k < 3; ++k) e.push_back({std::min(T(t, k), T(t, (k + 1) % 3)), std::max(T(t, k), T(t, (k + 1) % 3))});
