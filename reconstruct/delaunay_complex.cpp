@@ -120,8 +120,8 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
   // The points renumbered in CGAL's vertex storage order, which is the
   // spatial insertion order: constriction then reads the points of nearby
   // cells from nearby memory (in input order they are scattered over the
-  // whole array when the input is unordered). Coordinates come from the
-  // vertices, bit for bit the input's.
+  // whole array when the input is unordered). Coordinates are bit for bit
+  // those of the first occurrence.
   DelaunayComplex<2> out;
   out.points.resize(static_cast<Eigen::Index>(first.size()), 2);
   std::vector<Eigen::Index> spatial_first(first.size());
@@ -141,8 +141,9 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
       const auto old = static_cast<std::size_t>(v->info());
       spatial_first[static_cast<std::size_t>(k)] = first[old];
       renumbered[old] = k;
-      out.points(k, 0) = v->point().x();
-      out.points(k, 1) = v->point().y();
+      // From the first occurrence, not the vertex: the copy inserted first
+      // may differ in the sign of a zero.
+      out.points.row(k) = P.row(first[old]);
       v->info() = k++;
     }
     for (Eigen::Index& m : map) m = renumbered[static_cast<std::size_t>(m)];

@@ -10,9 +10,9 @@
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/boundary_svg.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <algorithm>
 #include <optional>
 
 namespace scanstation::app {

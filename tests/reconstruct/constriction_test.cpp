@@ -22,6 +22,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <numbers>
 #include <set>
 
@@ -377,8 +379,11 @@ TEST(Constriction2, DuplicatesFoundByTheTriangulationAreMergedLikeUniquePoints) 
       EXPECT_EQ(first[static_cast<std::size_t>(map[i])], expected_first[static_cast<std::size_t>(expected_map[i])])
           << trial << " row " << i;
     ASSERT_EQ(dt.points.rows(), static_cast<Eigen::Index>(first.size())) << trial;
-    for (std::size_t k = 0; k < first.size(); ++k)
-      EXPECT_EQ(dt.points.row(static_cast<Eigen::Index>(k)), P.row(first[k])) << trial;
+    for (std::size_t k = 0; k < first.size(); ++k)  // bit for bit: −0.0 is not +0.0 here
+      for (int j = 0; j < 2; ++j)
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(dt.points(static_cast<Eigen::Index>(k), j)),
+                  std::bit_cast<std::uint64_t>(P(first[k], j)))
+            << trial;
     std::vector<char> used(first.size(), 0);  // every distinct point is a vertex of some triangle
     for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
       for (int i = 0; i < 3; ++i) used[static_cast<std::size_t>(dt.cells(c, i))] = 1;
