@@ -310,6 +310,14 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   } while (v != start_vertex && v >= 0 && out.order.size() <= static_cast<std::size_t>(c.boundary.rows()));
   if (v != start_vertex || out.order.size() != static_cast<std::size_t>(c.boundary.rows()))
     throw TopologyError("constriction left a boundary that is not one simple cycle (please report this input)");
+  // The polygon starts at its point of the smallest input row, whatever the
+  // internal numbering (spatial, see delaunay_complex).
+  std::rotate(out.order.begin(),
+              std::min_element(out.order.begin(), out.order.end(),
+                               [&](int a, int b) {
+                                 return out.source[static_cast<std::size_t>(a)] < out.source[static_cast<std::size_t>(b)];
+                               }),
+              out.order.end());
   out.polygon.vertices.resize(static_cast<Eigen::Index>(out.order.size()), 2);
   for (std::size_t k = 0; k < out.order.size(); ++k)
     out.polygon.vertices.row(static_cast<Eigen::Index>(k)) = out.points.row(out.order[k]);
