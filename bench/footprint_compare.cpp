@@ -3,15 +3,20 @@
 // method), each measured in a child process of its own so that peak resident
 // memory (getrusage ru_maxrss) belongs to one job only.
 //
-//   build/bench/footprint_compare [--sizes 10000,100000,1000000] [MESH.off ...]
+//   build/bench/footprint_compare [--sizes 10000,100000,1000000] [--faceted L] [MESH.off ...]
 //
-// Inputs: points on an ellipsoid (radii 3, 2, 1) of each size, then the
-// vertices of each mesh file. "Memory" is the resident memory a job adds to
+// Inputs: points on an ellipsoid (radii 3, 2, 1) of each size; with
+// --faceted L also points on the flat faces of the same ellipsoid
+// approximated by an icosahedron subdivided L times (20·4^L faces: a densely
+// scanned object with flat faces, many points of each a rounding error off
+// its plane); then the vertices of each mesh file. "Memory" is the resident memory a job adds to
 // its child after the points are loaded, at its peak.
 #include "bench/guarded_main.h"
 #include "core/io/mesh_io.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/random.h"
+#include "sim/sampling.h"
+#include "sim/shapes.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -25,6 +30,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -130,8 +136,11 @@ void row(const std::string& name, const std::function<Eigen::MatrixX3d()>& load)
 static int run(int argc, char** argv) {
   std::vector<Eigen::Index> sizes = {10000, 100000, 1000000};
   std::vector<std::string> files;
+  std::optional<int> faceted;
   for (int a = 1; a < argc; ++a) {
-    if (std::string(argv[a]) == "--sizes" && a + 1 < argc) {
+    if (std::string(argv[a]) == "--faceted" && a + 1 < argc) {
+      faceted = std::stoi(argv[++a]);
+    } else if (std::string(argv[a]) == "--sizes" && a + 1 < argc) {
       sizes.clear();
       std::stringstream list(argv[++a]);
       for (std::string item; std::getline(list, item, ',');) sizes.push_back(std::stoll(item));
@@ -142,6 +151,11 @@ static int run(int argc, char** argv) {
   std::printf("%-22s %9s | %8s %8s %6s | %8s %8s %6s | %7s\n", "input", "points", "DT3 s", "ours s", "ratio",
               "DT3 MiB", "ours MiB", "ratio", "us/pt");
   for (const Eigen::Index n : sizes) row("ellipsoid", [n] { return ellipsoid_points(n); });
+  if (faceted)
+    for (const Eigen::Index n : sizes)
+      row("flat faces, L = " + std::to_string(*faceted), [n, L = *faceted] {
+        return sim::sample_surface(sim::ellipsoid({3.0, 2.0, 1.0}, L), n, 2024).positions;
+      });
   for (const std::string& file : files)
     row(std::filesystem::path(file).filename().string(), [file] { return io::read_mesh(file).vertices.positions; });
   return 0;

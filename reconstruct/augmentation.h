@@ -38,8 +38,8 @@ struct PointNeighbours {
 };
 
 /// points             #P by 3 positions (distinct)
-/// adjacency          per point, its Delaunay neighbours (candidates are the
-///                    boundary triangles within two Delaunay edges of a point)
+/// adjacency          per point, its Delaunay neighbours (a point's candidates
+///                    are the boundary triangles with a corner among them)
 /// boundary           (in/out) #F by 3 closed, oriented, genus-0 surface,
 ///                    counter-clockwise seen from outside
 /// interior_vertices  (in/out) points not yet on the boundary

@@ -125,12 +125,20 @@ bool BoundarySurface::improper(const Triangle& s, const Triangle& t) const {
 }
 
 bool BoundarySurface::point_in_tetrahedron(int a, int b, int c, int d) const {
-  const Kernel::Tetrahedron_3 tetra(exact(a), exact(b), exact(c), exact(d));
+  // q lies in the closed tetrahedron iff no face has it strictly on the side
+  // away from the opposite vertex: four orientation predicates, whose exact
+  // fallback (on nearly flat tetrahedra, as between the points of a densely
+  // scanned flat face) is far cheaper than that of Tetrahedron_3's
+  // bounded-side test, which solves for barycentric coordinates in rationals.
+  const Kernel::Point_3 &A = exact(a), &B = exact(b), &C = exact(c), &D = exact(d);
+  const CGAL::Orientation outside = -CGAL::orientation(A, B, C, D);
   const Eigen::AlignedBox3d region = box({a, b, c, d});
-  return !points_.visit(region, [&](int q) {
-    // The box test is only a cheap filter; the exact predicate decides.
-    if (q == a || q == b || q == c || q == d || !region.contains(point(q))) return true;
-    return tetra.has_on_unbounded_side(exact(q));
+  return !points_.visit(region, [&](int q, const Eigen::Vector3d&) {
+    // The box test is only a cheap filter; the exact predicates decide.
+    if (q == a || q == b || q == c || q == d) return true;
+    const Kernel::Point_3& Q = exact(q);
+    return CGAL::orientation(A, B, C, Q) == outside || CGAL::orientation(A, B, Q, D) == outside ||
+           CGAL::orientation(A, Q, C, D) == outside || CGAL::orientation(Q, B, C, D) == outside;
   });
 }
 

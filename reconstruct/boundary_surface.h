@@ -166,8 +166,11 @@ BoxGrid surface_grid(const Eigen::MatrixX3d& P);
 class PointTree {
  public:
   explicit PointTree(const Eigen::MatrixX3d& P);
-  /// Calls f(id) for every point in the closed `region`; f returns false to
-  /// stop early, and visit returns false then.
+  /// Calls f(id, position) for every point in the closed `region`; f
+  /// returns false to stop early, and visit returns false then. The
+  /// position comes from the tree's own copy, stored leaf by leaf: reading
+  /// it from the caller's (column-major) matrix costs three scattered
+  /// loads per point, and wide queries visit thousands of points.
   template <typename F>
   bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
     if (order_.empty()) return true;
@@ -180,7 +183,8 @@ class PointTree {
       if (!region.intersects(n.box)) continue;
       if (n.end - n.begin <= kLeaf) {
         for (int k = n.begin; k < n.end; ++k)
-          if (region.contains(position_[static_cast<std::size_t>(k)]) && !f(order_[static_cast<std::size_t>(k)]))
+          if (const Eigen::Vector3d& p = position_[static_cast<std::size_t>(k)];
+              region.contains(p) && !f(order_[static_cast<std::size_t>(k)], p))
             return false;
         continue;
       }
@@ -236,8 +240,8 @@ class BoundarySurface {
   /// Exact: some alive face other than those in `except` meets one of
   /// `fresh` improperly.
   bool meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const;
-  /// Calls f(q) for the points that may lie in `region`.
-  /// f(q) for the points q near `region`; f may return false to stop early.
+  /// f(q, position of q) for the points q in `region`; f may return false
+  /// to stop early.
   template <typename F>
   bool points_near(const Eigen::AlignedBox3d& region, F&& f) const { return points_.visit(region, f); }
 
