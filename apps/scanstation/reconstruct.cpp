@@ -128,6 +128,8 @@ class ReconstructCommand final : public Command {
       io::write_polygon(output_, r.polygon, write);
       if (svg_) io::write_file_atomically(*svg_, boundary_svg(r), context.overwrite);
       if (interior_) write_interior_2d(r, write);
+      write_timer.stop();
+      StageTimer verify_timer(context.report, "verify");  // describe() checks simplicity exactly
       result = statistics_json(r.statistics, r.source);
       result["boundary"] = describe(r.polygon);
       result["area"] = r.statistics.enclosed_measure;
@@ -150,6 +152,8 @@ class ReconstructCommand final : public Command {
         io::write_file_atomically(*interior_, io::write_vtk_cells(r.mesh.vertices.positions, r.interior),
                                   context.overwrite);
       }
+      write_timer.stop();
+      StageTimer verify_timer(context.report, "verify");  // describe() checks for self-intersections exactly
       result = statistics_json(r.statistics, r.source);
       result["boundary"] = describe(r.mesh);
       result["volume"] = r.statistics.enclosed_measure;

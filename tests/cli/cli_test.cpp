@@ -155,7 +155,7 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
   EXPECT_EQ(report["result"]["boundary"]["topology"]["closed"], true);
   EXPECT_EQ(report["result"]["boundary"]["topology"]["genus"], 0);
   EXPECT_EQ(report["result"]["boundary"]["faces"], 2 * 620 - 4);
-  for (const char* stage : {"read", "delaunay", "constriction", "write", "total"})
+  for (const char* stage : {"read", "delaunay", "constriction", "write", "verify", "total"})
     EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
   {
     std::ofstream(dir / "square.xy") << "0 0\n2 0\n2 2\n0 2\n1 0.2\n0 0\n";
