@@ -1,7 +1,7 @@
 // The incremental constriction against a from-scratch reconstruction of the
 // same points, measured in the same run.
 //
-//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random] [--shape S] [--subdivision L] [--margin M]
+//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random] [--shape S] [--subdivision L] [--noise S] [--margin M]
 //   build/bench/incremental_bench recall [--batches B] [--margin M] MESH.off ...
 //
 // timing: N points (default 100000) sampled on a simulated shape (chalice,
@@ -16,6 +16,10 @@
 // per triangle (about 50 at 1M points with L = 5, under one with L = 8),
 // which the Delaunay triangulation meets as flat cells with huge
 // circumspheres (docs/design.md, incremental constriction).
+// --noise S: each point moved along its facet's normal by N(0, S²), in the
+// shape's units (the ellipsoid's radii are 3, 2, 1): noise-free samples of
+// flat facets lie a rounding error off their planes, which no scanner's
+// points do (docs/design.md, incremental constriction).
 // --stop-after S feeds only the first S batches (the median is then over
 // early batches, each a larger share of the points so far: pessimistic).
 //
@@ -83,21 +87,22 @@ struct Args {
   bool scan = true;
   std::string shape = "chalice";
   int subdivision = 5;
+  double noise = 0.0;
   std::vector<std::string> files;
 };
 
 Eigen::MatrixX3d shape_points(const Args& a) {
   const TriangleMesh mesh = a.shape == "ellipsoid" ? sim::ellipsoid({3.0, 2.0, 1.0}, a.subdivision)
                                                    : sim::surface_of_revolution(sim::chalice_profile(200), 256);
-  return sim::sample_surface(mesh, a.points, 2024).positions;
+  return sim::sample_surface(mesh, a.points, 2024, a.noise).positions;
 }
 
 int timing(const Args& a) {
   const Eigen::MatrixX3d P = shape_points(a);
   const std::vector<Eigen::Index> order = arrival_order(P, a.scan);
   const std::size_t n = order.size();
-  std::printf("%s (subdivision %d), %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), a.subdivision, n, a.batches,
-              a.scan ? "scan" : "random", a.margin);
+  std::printf("%s (subdivision %d, noise %g), %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), a.subdivision,
+              a.noise, n, a.batches, a.scan ? "scan" : "random", a.margin);
   std::printf("%6s %9s %10s %10s %8s %9s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "cpu_ratio",
               "touched", "rings", "wide", "all");
   IncrementalConstriction inc(surface_defaults(), a.margin);
@@ -179,6 +184,7 @@ int main(int argc, char** argv) {
     else if (arg == "--shape") a.shape = value();
     else if (arg == "--margin") a.margin = std::stoi(value());
     else if (arg == "--subdivision") a.subdivision = std::stoi(value());
+    else if (arg == "--noise") a.noise = std::stod(value());
     else if (arg == "--stop-after") a.stop_after = std::stoi(value());
     else a.files.push_back(arg);
   }
