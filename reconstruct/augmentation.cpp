@@ -187,9 +187,8 @@ class Augmenter {
     if (!(nn > 0)) return false;
     const Eigen::Vector3d O = A + (e1.squaredNorm() * e2.cross(n) + e2.squaredNorm() * n.cross(e1)) / (2.0 * nn);
     const double r = (A - O).norm();
-    const Eigen::AlignedBox3d ball(O.array() - r, O.array() + r);
     if (c0 <= -1.0) {  // the lens degenerates to the open triangle
-      return surface_.points_near(ball, [&](int q, const Eigen::Vector3d&) {
+      return surface_.points_in_ball(O, r, [&](int q, const Eigen::Vector3d&) {
         return q == a || q == b || q == c ||
                CGAL::orientation(surface_.exact(a), surface_.exact(b), surface_.exact(c), surface_.exact(q)) !=
                    CGAL::COPLANAR ||
@@ -210,7 +209,7 @@ class Augmenter {
     const double cap = deepest_lens_ ? lens_offset(r, *deepest_lens_) : 0.0;
     const Eigen::Vector3d unit = n / std::sqrt(nn);
     double highest = known.at_least;
-    const bool complete = surface_.points_near(ball, [&](int q, const Eigen::Vector3d& p) {
+    const bool complete = surface_.points_in_ball(O, r, [&](int q, const Eigen::Vector3d& p) {
       if (q == a || q == b || q == c) return true;
       const Eigen::Vector3d x = p - O;
       const double s = r * r - x.squaredNorm(), h = std::abs(x.dot(unit));

@@ -194,6 +194,42 @@ class PointTree {
     return true;
   }
 
+  /// The same for the points within distance r of c (a superset: the ball
+  /// is closed and its test in floating point), visiting the nodes nearest
+  /// c first, so that a search stopped by the first point of some kind near
+  /// the centre ends early.
+  template <typename F>
+  bool visit_ball(const Eigen::Vector3d& c, double r, F&& f) const {
+    if (order_.empty()) return true;
+    const double reach = r * r * (1.0 + 1e-12);
+    int stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const int node = stack[--top];
+      const Node& n = nodes_[static_cast<std::size_t>(node)];
+      if (n.end - n.begin <= kLeaf) {
+        for (int k = n.begin; k < n.end; ++k)
+          if (const Eigen::Vector3d& p = position_[static_cast<std::size_t>(k)];
+              (p - c).squaredNorm() <= reach && !f(order_[static_cast<std::size_t>(k)], p))
+            return false;
+        continue;
+      }
+      const int a = 2 * node + 1, b = 2 * node + 2;
+      const double da = nodes_[static_cast<std::size_t>(a)].box.squaredExteriorDistance(c),
+                   db = nodes_[static_cast<std::size_t>(b)].box.squaredExteriorDistance(c);
+      // The nearer child is pushed last, so it is visited first.
+      if (da <= db) {
+        if (db <= reach) stack[top++] = b;
+        if (da <= reach) stack[top++] = a;
+      } else {
+        if (da <= reach) stack[top++] = a;
+        if (db <= reach) stack[top++] = b;
+      }
+    }
+    return true;
+  }
+
  private:
   static constexpr int kLeaf = 8;
   struct Node {
@@ -240,10 +276,11 @@ class BoundarySurface {
   /// Exact: some alive face other than those in `except` meets one of
   /// `fresh` improperly.
   bool meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const;
-  /// f(q, position of q) for the points q in `region`; f may return false
-  /// to stop early.
+  /// f(q, position of q) for the points q within distance r of c (and
+  /// perhaps a few on its rim), nearest first by tree node; f may return
+  /// false to stop early.
   template <typename F>
-  bool points_near(const Eigen::AlignedBox3d& region, F&& f) const { return points_.visit(region, f); }
+  bool points_in_ball(const Eigen::Vector3d& c, double r, F&& f) const { return points_.visit_ball(c, r, f); }
 
   /// The alive faces.
   Eigen::MatrixX3i boundary() const;
