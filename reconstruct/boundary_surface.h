@@ -173,25 +173,8 @@ class PointTree {
   /// loads per point, and wide queries visit thousands of points.
   template <typename F>
   bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
-    if (order_.empty()) return true;
-    int stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const int node = stack[--top];
-      const Node& n = nodes_[static_cast<std::size_t>(node)];
-      if (!region.intersects(n.box)) continue;
-      if (n.end - n.begin <= kLeaf) {
-        for (int k = n.begin; k < n.end; ++k)
-          if (const Eigen::Vector3d& p = position_[static_cast<std::size_t>(k)];
-              region.contains(p) && !f(order_[static_cast<std::size_t>(k)], p))
-            return false;
-        continue;
-      }
-      stack[top++] = 2 * node + 2;
-      stack[top++] = 2 * node + 1;
-    }
-    return true;
+    return walk([&](const Eigen::AlignedBox3d& box) { return region.intersects(box); },
+                [&](const Eigen::Vector3d& p) { return region.contains(p); }, [](int, int) { return true; }, f);
   }
 
   /// The same for the points within distance r of c (a superset: the ball
@@ -200,34 +183,11 @@ class PointTree {
   /// the centre ends early.
   template <typename F>
   bool visit_ball(const Eigen::Vector3d& c, double r, F&& f) const {
-    if (order_.empty()) return true;
     const double reach = r * r * (1.0 + 1e-12);
-    int stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const int node = stack[--top];
-      const Node& n = nodes_[static_cast<std::size_t>(node)];
-      if (n.end - n.begin <= kLeaf) {
-        for (int k = n.begin; k < n.end; ++k)
-          if (const Eigen::Vector3d& p = position_[static_cast<std::size_t>(k)];
-              (p - c).squaredNorm() <= reach && !f(order_[static_cast<std::size_t>(k)], p))
-            return false;
-        continue;
-      }
-      const int a = 2 * node + 1, b = 2 * node + 2;
-      const double da = nodes_[static_cast<std::size_t>(a)].box.squaredExteriorDistance(c),
-                   db = nodes_[static_cast<std::size_t>(b)].box.squaredExteriorDistance(c);
-      // The nearer child is pushed last, so it is visited first.
-      if (da <= db) {
-        if (db <= reach) stack[top++] = b;
-        if (da <= reach) stack[top++] = a;
-      } else {
-        if (da <= reach) stack[top++] = a;
-        if (db <= reach) stack[top++] = b;
-      }
-    }
-    return true;
+    const auto distance = [&](int node) { return nodes_[static_cast<std::size_t>(node)].box.squaredExteriorDistance(c); };
+    return walk([&](const Eigen::AlignedBox3d& box) { return box.squaredExteriorDistance(c) <= reach; },
+                [&](const Eigen::Vector3d& p) { return (p - c).squaredNorm() <= reach; },
+                [&](int a, int b) { return distance(a) <= distance(b); }, f);
   }
 
  private:
@@ -236,6 +196,33 @@ class PointTree {
     Eigen::AlignedBox3d box;
     int begin = 0, end = 0;
   };
+  // Depth first over the nodes whose box `reaches` accepts, child a before
+  // child b when first(a, b); f(id, position) for the points `holds`
+  // accepts, until f returns false.
+  template <typename Reaches, typename Holds, typename First, typename F>
+  bool walk(Reaches&& reaches, Holds&& holds, First&& first, F&& f) const {
+    if (order_.empty()) return true;
+    int stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const int node = stack[--top];
+      const Node& n = nodes_[static_cast<std::size_t>(node)];
+      if (!reaches(n.box)) continue;
+      if (n.end - n.begin <= kLeaf) {
+        for (int k = n.begin; k < n.end; ++k)
+          if (const Eigen::Vector3d& p = position_[static_cast<std::size_t>(k)];
+              holds(p) && !f(order_[static_cast<std::size_t>(k)], p))
+            return false;
+        continue;
+      }
+      const int a = 2 * node + 1, b = 2 * node + 2;
+      const bool a_first = first(a, b);  // the one pushed last is visited first
+      stack[top++] = a_first ? b : a;
+      stack[top++] = a_first ? a : b;
+    }
+    return true;
+  }
   void build(int node, int begin, int end);
   std::vector<int> order_;                  // point ids, grouped by leaf
   std::vector<Eigen::Vector3d> position_;   // their positions, same order
