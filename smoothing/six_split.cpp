@@ -512,10 +512,13 @@ void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen
     surface.patches.reserve(6 * faces);
     prefault(surface.patches.data(), surface.patches.capacity() * sizeof(CubicTriangle));
   }
+  // The sides left for later faces wait in entries that are reused once read:
+  // only the edges between the faces done and those to come are held, so the
+  // entries stay few and in the caches when the faces come in a local order.
   // Default-initialised (not zeroed): every entry is written before it is read.
-  const std::unique_ptr<EdgeSide[]> left_for_later(new EdgeSide[3 * faces / 2 + 1]);
+  std::vector<EdgeSide, UninitialisedAllocator<EdgeSide>> left_for_later;
+  std::vector<int> free_entries;
   const std::unique_ptr<int[]> slot(new int[3 * faces]);  // half edge 3g + d → its entry in left_for_later
-  int solved = 0;
   FaceSplit own;
   EdgeSide here[3];
   const EdgeSide* sides[3];
@@ -526,16 +529,25 @@ void six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen
     split_face(macro_patch(V, F, N, f, tension), own);
     for (int c = 0; c < 3; ++c) {
       const int g = edges.neighbour(f, c), d = edges.neighbour_edge(f, c);
-      if (g < f) {
-        sides[c] = &left_for_later[slot[3 * f + c]];
-        continue;
+      if (g > f) {
+        int entry;
+        if (free_entries.empty()) {
+          entry = static_cast<int>(left_for_later.size());
+          left_for_later.emplace_back();
+        } else {
+          entry = free_entries.back();
+          free_entries.pop_back();
+        }
+        slot[3 * g + d] = entry;
+        if (!join_macro_edge(own, c, far_side(macro_patch(V, F, N, g, tension), d), max_move, here[c], left_for_later[static_cast<std::size_t>(entry)]))
+          ++surface.dependent_edges;
       }
-      slot[3 * g + d] = solved;
-      if (!join_macro_edge(own, c, far_side(macro_patch(V, F, N, g, tension), d), max_move, here[c], left_for_later[solved++]))
-        ++surface.dependent_edges;
-      sides[c] = &here[c];
     }
+    for (int c = 0; c < 3; ++c)
+      sides[c] = edges.neighbour(f, c) > f ? &here[c] : &left_for_later[static_cast<std::size_t>(slot[3 * f + c])];
     assemble(own, sides, local);
+    for (int c = 0; c < 3; ++c)
+      if (edges.neighbour(f, c) < f) free_entries.push_back(slot[3 * f + c]);
     store_patches(local, &surface.patches[6 * f]);
     std::fill_n(&surface.macro[6 * f], 6, f);
   }

@@ -41,8 +41,9 @@ namespace scanstation {
 /// domain ratios of the split, so the interior joins C¹.
 /// tension  the Step-2 constant of the macro patches (1/3 in the thesis).
 /// One pass over the macro triangles, each written once, complete; memory
-/// per macro triangle: 1440 bytes of patches and 24 of `macro` kept, 228 more
-/// while building.
+/// per macro triangle: 1440 bytes of patches and 24 of `macro` kept, 12 more
+/// while building, and 144 bytes per macro edge between the triangles done
+/// and those to come (a few thousand edges when F is in a local order).
 BezierSurface six_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& N,
                         const MeshEdges& edges, double tension = 1.0 / 3.0,
                         double max_move = std::numeric_limits<double>::infinity());
