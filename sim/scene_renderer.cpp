@@ -299,17 +299,24 @@ cv::Mat SceneRenderer::expose(const RenderedView& view, const std::vector<int>& 
   }
   if (sensor.defocus_sigma > 0) cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), sensor.defocus_sigma);
   cv::Mat frame(radiance.rows, radiance.cols, CV_8U);
+  // Shot and read noise are independent Gaussians, so their sum is one
+  // Gaussian whose variance is the sum of theirs, and one polar step gives
+  // two pixels their noise. (Drawing the two terms apart by Box–Muller, two
+  // uniforms, a logarithm and a cosine each, took about half of a simulated
+  // scan's time.)
+  const double read_variance = sensor.read_noise * sensor.read_noise;
+  const auto level = [&](double value, double normal) {
+    if (sensor.noise) value += std::sqrt(std::max(0.0, value) / sensor.electrons_per_level + read_variance) * normal;
+    return static_cast<std::uint8_t>(std::clamp(value, 0.0, 255.0) + 0.5);  // nearest, halves up (as lround on ≥ 0)
+  };
   tbb::parallel_for(0, radiance.rows, [&](int r) {
     Random random(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(r));
     const float* in = radiance.ptr<float>(r);
     std::uint8_t* out = frame.ptr<std::uint8_t>(r);
-    for (int c = 0; c < radiance.cols; ++c) {
-      double value = in[c];
-      if (sensor.noise) {
-        const double shot = std::sqrt(std::max(0.0, value) / sensor.electrons_per_level);
-        value += shot * random.normal() + sensor.read_noise * random.normal();
-      }
-      out[c] = static_cast<std::uint8_t>(std::clamp(std::lround(value), 0l, 255l));
+    for (int c = 0; c < radiance.cols; c += 2) {
+      const auto [first, second] = sensor.noise ? random.normal_pair() : std::pair{0.0, 0.0};
+      out[c] = level(in[c], first);
+      if (c + 1 < radiance.cols) out[c + 1] = level(in[c + 1], second);
     }
   });
   return frame;
