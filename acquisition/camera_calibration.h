@@ -33,8 +33,10 @@ struct CameraIntrinsics {
 ///          (and through them the focal length) when the views do not reach
 ///          the image corners; free it for wide-angle lenses
 /// Throws InvalidInput for fewer than 3 views, and for views whose boards are
-/// all (nearly) parallel (within 5°, or fx uncertain by more than 5%): Zhang's
-/// method cannot separate the focal length from the distance then.
+/// all (nearly) parallel: within 5° of each other seen through a nominal
+/// camera (from the homographies, before the fit) or as fitted, or fx
+/// uncertain by more than 5%. Zhang's method cannot separate the focal
+/// length from the distance then.
 CameraIntrinsics calibrate_camera(const std::vector<std::vector<cv::Point2f>>& corners, cv::Size inner_corners,
                                   double square_size, cv::Size image_size, bool fix_k3 = true);
 
