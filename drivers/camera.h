@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <opencv2/core/mat.hpp>
 #include <string>
@@ -99,7 +100,15 @@ class Camera {
   virtual void start() = 0;
   virtual void stop() = 0;
   /// The oldest frame not yet grabbed; waits at most `timeout`, then throws DeviceTimeout.
-  virtual Frame grab(std::chrono::milliseconds timeout) = 0;
+  Frame grab(std::chrono::milliseconds timeout) {
+    return grab_if(timeout, [](const Frame&) { return true; });
+  }
+  /// As grab(), but the image is made (decoded, converted, or in a
+  /// simulator rendered) only when `wanted` accepts the frame by its
+  /// timestamps and sequence; otherwise the frame comes without one. The
+  /// frame gate throws stale frames away unseen (frame_gate.h), so they cost
+  /// no decoding.
+  virtual Frame grab_if(std::chrono::milliseconds timeout, const std::function<bool(const Frame&)>& wanted) = 0;
 };
 
 /// Control key of a driver label (see ControlInfo).

@@ -13,7 +13,7 @@ SettledFrame grab_settled(Camera& camera, Clock& clock, Timestamp settled, std::
       throw DeviceTimeout("no frame exposed after the state change from " + camera.description() + " within " +
                           std::to_string(timeout.count()) + " ms (" + std::to_string(result.discarded) +
                           " stale frames discarded)");
-    result.frame = camera.grab(left);
+    result.frame = camera.grab_if(left, [settled](const Frame& frame) { return frame.exposure_start > settled; });
     if (result.frame.exposure_start > settled) return result;
     ++result.discarded;
   }

@@ -374,7 +374,7 @@ bool V4l2Camera::convert(const Buffer& buffer, std::uint32_t bytes_used, cv::Mat
   return true;
 }
 
-Frame V4l2Camera::grab(std::chrono::milliseconds timeout) {
+Frame V4l2Camera::grab_if(std::chrono::milliseconds timeout, const std::function<bool(const Frame&)>& wanted) {
   if (!streaming_) throw InvalidInput("grab on " + path_ + ", which is not streaming");
   const Timestamp deadline = clock_.now() + timeout;
   for (;;) {
@@ -395,18 +395,20 @@ Frame V4l2Camera::grab(std::chrono::milliseconds timeout) {
       continue;
     }
     Frame frame;
-    const bool intact = !(buffer.flags & V4L2_BUF_FLAG_ERROR) && buffer.index < buffers_.size() &&
-                        convert(buffers_[buffer.index], buffer.bytesused, frame.image);
-    requeue(buffer.index);
-    if (!intact) continue;  // a corrupt frame is a dropped frame; the sequence gap counts it
     frame.sequence = buffer.sequence;
-    frame.dropped_before = sequence_counter_.dropped_before(buffer.sequence);
     frame.timestamp = std::chrono::seconds(buffer.timestamp.tv_sec) + std::chrono::microseconds(buffer.timestamp.tv_usec);
     // Start-of-exposure stamps are exact. End-of-frame stamps come after
     // exposure and readout, each at most one frame interval on a streaming
     // sensor, so two intervals earlier bounds the exposure start from below.
     const bool start_of_exposure = (buffer.flags & V4L2_BUF_FLAG_TSTAMP_SRC_MASK) == V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
     frame.exposure_start = start_of_exposure ? frame.timestamp : frame.timestamp - 2 * frame_interval_;
+    // A frame not wanted is not decoded, so a corrupt one among them passes
+    // as an imageless frame rather than a dropped one.
+    const bool intact = !(buffer.flags & V4L2_BUF_FLAG_ERROR) && buffer.index < buffers_.size() &&
+                        (!wanted(frame) || convert(buffers_[buffer.index], buffer.bytesused, frame.image));
+    requeue(buffer.index);
+    if (!intact) continue;  // a corrupt frame is a dropped frame; the sequence gap counts it
+    frame.dropped_before = sequence_counter_.dropped_before(buffer.sequence);
     return frame;
   }
 }

@@ -41,7 +41,7 @@ class V4l2Camera final : public Camera {
   void restore_controls() override;
   void start() override;
   void stop() override;
-  Frame grab(std::chrono::milliseconds timeout) override;
+  Frame grab_if(std::chrono::milliseconds timeout, const std::function<bool(const Frame&)>& wanted) override;
 
  private:
   struct Control {

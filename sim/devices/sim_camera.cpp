@@ -102,7 +102,7 @@ Timestamp SimCamera::next_ready() {
   return exposure_start(slot) + exposure_time() + config_.readout;
 }
 
-drivers::Frame SimCamera::grab(std::chrono::milliseconds timeout) {
+drivers::Frame SimCamera::grab_if(std::chrono::milliseconds timeout, const std::function<bool(const drivers::Frame&)>& wanted) {
   check_present();
   if (!streaming_) throw InvalidInput("grab on a camera that is not streaming");
   const Timestamp deadline = clock_.now() + timeout;
@@ -111,7 +111,7 @@ drivers::Frame SimCamera::grab(std::chrono::milliseconds timeout) {
     if (!buffers_.empty()) {
       const Pending pending = buffers_.front();
       buffers_.pop_front();
-      return develop(pending);
+      return develop(pending, wanted);
     }
     const Timestamp ready = next_ready();
     if (ready > deadline) {
@@ -124,13 +124,20 @@ drivers::Frame SimCamera::grab(std::chrono::milliseconds timeout) {
   }
 }
 
-drivers::Frame SimCamera::develop(const Pending& pending) {
+drivers::Frame SimCamera::develop(const Pending& pending, const std::function<bool(const drivers::Frame&)>& wanted) {
+  drivers::Frame frame;
+  frame.timestamp = pending.timestamp;
+  frame.exposure_start = pending.exposure_start;
+  frame.sequence = pending.sequence;
+  frame.dropped_before = sequence_counter_.dropped_before(pending.sequence);
+  // Rendering is most of a simulated scan's time, and four in five frames
+  // are stale ones the frame gate throws away unseen.
+  if (!wanted(frame)) return frame;
   const cv::Mat irradiance = source_->render({format_.size, pending.exposure_start, pending.exposure_end,
                                               pending.sequence});
   // Pixel value = irradiance × exposure × gain, relative to 10 ms at gain 32.
   const double scale = 255.0 * drivers::to_seconds(pending.exposure_end - pending.exposure_start) / 0.010 *
                        static_cast<double>(control("gain")) / 32.0;
-  drivers::Frame frame;
   cv::Mat grey;
   irradiance.convertTo(grey, CV_8UC1, scale);
   switch (format_.format) {
@@ -139,10 +146,6 @@ drivers::Frame SimCamera::develop(const Pending& pending) {
     case drivers::PixelFormat::yuyv:
     case drivers::PixelFormat::mjpeg: cv::cvtColor(grey, frame.image, cv::COLOR_GRAY2BGR); break;
   }
-  frame.timestamp = pending.timestamp;
-  frame.exposure_start = pending.exposure_start;
-  frame.sequence = pending.sequence;
-  frame.dropped_before = sequence_counter_.dropped_before(pending.sequence);
   return frame;
 }
 

@@ -41,7 +41,7 @@ class SimCamera final : public drivers::Camera {
   std::int64_t control(const std::string& key) override;
   void start() override;
   void stop() override;
-  drivers::Frame grab(std::chrono::milliseconds timeout) override;
+  drivers::Frame grab_if(std::chrono::milliseconds timeout, const std::function<bool(const drivers::Frame&)>& wanted) override;
 
   /// From now on every operation fails as if the camera were unplugged.
   void unplug() { unplugged_ = true; }
@@ -60,7 +60,7 @@ class SimCamera final : public drivers::Camera {
   void produce(drivers::Timestamp now);
   /// Ready time of the next frame the sensor will deliver.
   drivers::Timestamp next_ready();
-  drivers::Frame develop(const Pending& pending);
+  drivers::Frame develop(const Pending& pending, const std::function<bool(const drivers::Frame&)>& wanted);
   void check_present() const;
 
   std::unique_ptr<FrameSource> source_;

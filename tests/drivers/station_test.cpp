@@ -65,8 +65,17 @@ TEST(OpenStation, SimulatedStationScansSettledPairsAndEndsSafe) {
       const SettledFrame frame = grab_settled(*station->camera, *station->clock, settled, 1000ms);
       EXPECT_GT(frame.frame.exposure_start, settled);
       EXPECT_EQ(station->sim_chip->level_at(0, frame.frame.exposure_start), on);
+      EXPECT_FALSE(frame.frame.image.empty());
     }
   }
+  // A frame the caller does not want is not rendered: it comes without an
+  // image, stamped and numbered as any other, and the next one has its image.
+  const Frame skipped = station->camera->grab_if(1000ms, [](const Frame&) { return false; });
+  EXPECT_TRUE(skipped.image.empty());
+  const Frame next = station->camera->grab(1000ms);
+  EXPECT_FALSE(next.image.empty());
+  EXPECT_EQ(next.sequence, skipped.sequence + 1);
+  EXPECT_GT(next.exposure_start, skipped.exposure_start);
   EXPECT_NEAR(station->turntable->angle(), 360.0, 1e-9);
   station->lasers[0]->set(true);
   station.reset();  // normal end

@@ -104,6 +104,11 @@ TEST(V4l2Camera, DropsAndCorruptFramesShowAsSequenceGaps) {
   const SettledFrame settled = grab_settled(camera, rig.clock, change, 500ms);
   EXPECT_GT(settled.frame.exposure_start, change);
   EXPECT_GE(settled.discarded, 2u);
+  EXPECT_FALSE(settled.frame.image.empty());
+  // A frame not wanted is dequeued and requeued but not decoded.
+  const Frame skipped = camera.grab_if(200ms, [](const Frame&) { return false; });
+  EXPECT_TRUE(skipped.image.empty());
+  EXPECT_EQ(camera.grab(200ms).sequence, skipped.sequence + 1);
 }
 
 TEST(V4l2Camera, StalledSensorTimesOutAtTheDeadline) {
