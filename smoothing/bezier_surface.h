@@ -4,6 +4,7 @@
 
 #include "smoothing/bezier_triangle.h"
 
+#include <array>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -36,17 +37,19 @@ struct UninitialisedAllocator : std::allocator<T> {
 
 /// patches  the micro triangles; corners counter-clockwise from outside
 /// macro    for each patch, the index of the input (macro) triangle it splits
-/// dependent_edges  macro edges where the scheme's equations for the
+/// dependent_edges  macro edges, as the two macro triangles they join (the
+///          smaller index first), where the scheme's equations for the
 ///          cross-edge control points were dependent (e.g. Equation (9.4) on
 ///          an edge whose two ends look alike, as on a regular icosahedron)
 ///          or had no solution (an end whose tangent plane condition (9.3a)
 ///          cannot hold, see end_fits): the closest solution was taken and
-///          the edge need not be G¹
+///          the edge need not be G¹ (for a two-split pair whose star has no
+///          solution, the pair's own two triangles)
 /// Adjacent patches share their common edge's four control points bit for bit.
 struct BezierSurface {
   std::vector<CubicTriangle, UninitialisedAllocator<CubicTriangle>> patches;
   std::vector<int, UninitialisedAllocator<int>> macro;
-  std::size_t dependent_edges = 0;
+  std::vector<std::array<int, 2>> dependent_edges;
 };
 
 }  // namespace scanstation

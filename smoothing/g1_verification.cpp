@@ -4,7 +4,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace scanstation {
 
@@ -50,10 +52,27 @@ G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge) {
   result.shared_edges = adjacency.pairs.size();
   result.unmatched_edges = adjacency.unmatched;
   const int n = samples_per_edge + 1;
-  // The largest angle is kept as its tangent too, so that the common case
+  // A dependent macro edge is joined by the closest solution of its
+  // equations, and those also hold the split's inner edges at the macro
+  // edge's midpoint (§9.8 Step 5: Z = (Y_a + Y_b)/2, the inner edges to O and
+  // O' C¹): the patch edges on it and inside its two macro triangles need not
+  // be G¹.
+  std::vector<std::array<int, 2>> dependent = surface.dependent_edges;
+  std::vector<int> near_dependent;
+  for (const auto& [f, g] : dependent) near_dependent.insert(near_dependent.end(), {f, g});
+  std::sort(dependent.begin(), dependent.end());
+  std::sort(near_dependent.begin(), near_dependent.end());
+  const auto approximate = [&](const PatchEdgePair& pair) {
+    const int a = surface.macro[static_cast<std::size_t>(pair.patch_a)];
+    const int b = surface.macro[static_cast<std::size_t>(pair.patch_b)];
+    if (a == b) return std::binary_search(near_dependent.begin(), near_dependent.end(), a);
+    return std::binary_search(dependent.begin(), dependent.end(), std::array<int, 2>{std::min(a, b), std::max(a, b)});
+  };
+  // The largest angles are kept as tangents too, so that the common case
   // (an angle at rounding level, below the largest so far) needs no atan2.
-  double max_angle = 0.0, max_tangent = 0.0, max_squared_residual = 0.0;
+  double max_angle[2] = {0.0, 0.0}, max_tangent[2] = {0.0, 0.0}, max_squared_residual = 0.0;
   for (const PatchEdgePair& pair : adjacency.pairs) {
+    const int kind = approximate(pair) ? 1 : 0;  // 0: joined exactly
     const EdgeDerivatives P(surface.patches[pair.patch_a], pair.edge_a);
     const EdgeDerivatives Q(surface.patches[pair.patch_b], pair.edge_b);
     for (int i = 0; i <= n; ++i) {
@@ -67,20 +86,21 @@ G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge) {
       ++result.samples;
       // A vanishing normal is a singular point: no tangent plane, not G¹.
       if (nP.squaredNorm() == 0.0 || nQ.squaredNorm() == 0.0) {
-        max_angle = M_PI;
-        max_tangent = INFINITY;
+        max_angle[kind] = M_PI;
+        max_tangent[kind] = INFINITY;
         continue;
       }
       const double sine = nP.cross(nQ).norm(), cosine = nP.dot(nQ);
-      if (cosine > 0.0 && sine <= cosine * max_tangent) continue;
+      if (cosine > 0.0 && sine <= cosine * max_tangent[kind]) continue;
       const double angle = std::atan2(sine, cosine);
-      if (angle > max_angle) {
-        max_angle = angle;
-        max_tangent = angle < M_PI / 2 ? std::tan(angle) : INFINITY;
+      if (angle > max_angle[kind]) {
+        max_angle[kind] = angle;
+        max_tangent[kind] = angle < M_PI / 2 ? std::tan(angle) : INFINITY;
       }
     }
   }
-  result.max_normal_angle = max_angle;
+  result.max_normal_angle = std::max(max_angle[0], max_angle[1]);
+  result.max_normal_angle_exact = max_angle[0];
   result.max_residual = std::sqrt(max_squared_residual);
   return result;
 }

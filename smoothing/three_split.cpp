@@ -122,7 +122,7 @@ BezierSurface three_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, 
       const int g = edges.neighbour(f, e);
       if (f < g && !join_three_split_edge(surface.patches[3 * f + e], surface.patches[3 * g + edges.neighbour_edge(f, e)],
                                           options.least_squares_ratio, options.max_move))
-        ++surface.dependent_edges;
+        surface.dependent_edges.push_back({f, g});
     }
   for (int f = 0; f < F.rows(); ++f) join_three_split_interior(&surface.patches[3 * f]);
   return surface;

@@ -549,7 +549,7 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
     split_pair(macro[p.f], macro[p.g], p, micro);
     if (!PairStar(*micro[0], *micro[1], *micro[2], *micro[3])
              .solve(*micro[0], *micro[1], *micro[2], *micro[3], options.max_move))
-      ++surface.dependent_edges;
+      surface.dependent_edges.push_back({std::min(p.f, p.g), std::max(p.f, p.g)});
     for (int i = 0; i < 4; ++i) join_outer_edge({&P[first[p.neighbour[i]] + p.c[i]], p.fg[i]}, (*micro[i])[centre]);
   }
   for (int f = 0; f < F.rows(); ++f) {
@@ -559,7 +559,7 @@ BezierSurface two_split(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, co
       if (f < g && !in_pair[g] &&
           !join_three_split_edge(P[first[f] + e], P[first[g] + edges.neighbour_edge(f, e)], options.least_squares_ratio,
                                  options.max_move))
-        ++surface.dependent_edges;
+        surface.dependent_edges.push_back({f, g});
     }
   }
   for (int f = 0; f < F.rows(); ++f)

@@ -157,10 +157,10 @@ class SmoothCommand final : public Command {
                   "below %g°)\n",
                   smoothed.two_split_triangles, smoothed.two_split_pairs, smoothed.adjacent_two_split_pairs,
                   smoothed.two_split_candidates, min_angle_);
-    if (smoothed.sign_condition_violations > 0 || surface.dependent_edges > 0)
+    if (smoothed.sign_condition_violations > 0 || !surface.dependent_edges.empty())
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
-                  "equations\n",
-                  smoothed.sign_condition_violations, surface.dependent_edges);
+                  "equations (largest normal angle %.3g rad elsewhere)\n",
+                  smoothed.sign_condition_violations, surface.dependent_edges.size(), smoothed.g1.max_normal_angle_exact);
   }
 
   SurfaceSmoothingOptions smoothing_options(const TriangleMesh& mesh) const {

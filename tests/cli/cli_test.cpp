@@ -409,6 +409,8 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   const nlohmann::json report = nlohmann::json::parse(slurp(dir / "r.json"));
   const nlohmann::json& result = report["result"];
   EXPECT_LT(result["g1"]["max_normal_angle"].get<double>(), 1e-8);
+  EXPECT_EQ(result["dependent_edges"], 0);  // no edge joined approximately: the angle away from them is the same
+  EXPECT_EQ(result["g1"]["max_normal_angle_where_exact"], result["g1"]["max_normal_angle"]);
   EXPECT_EQ(result["g1"]["unmatched_edges"], 0);
   EXPECT_EQ(result["patches"], 6 * result["macro_triangles"].get<int>());  // six-split by default
   EXPECT_GT(result["oscillation"]["mean_relative"].get<double>(), 0.0);

@@ -34,7 +34,7 @@ Smoothed smooth(const TriangleMesh& mesh) {
 void expect_g1(const TriangleMesh& mesh, const std::string& name) {
   const Smoothed s = smooth(mesh);
   ASSERT_EQ(s.six.patches.size(), 6u * mesh.face_count());
-  EXPECT_EQ(s.six.dependent_edges, 0u) << name;
+  EXPECT_EQ(s.six.dependent_edges.size(), 0u) << name;
   EXPECT_EQ(test::expect_interpolates(s.six, mesh.vertices.positions, mesh.faces, s.normals),
             6u * mesh.face_count());
   const G1Verification g1 = verify_g1(s.six);
@@ -62,8 +62,8 @@ TEST(SixSplit, IsG1WhereTheThreeSplitIsDependent) {
   // dependent; the six-split's least squares have room to spare there.
   const TriangleMesh cactus = test::real_mesh("cactus.off");
   const Smoothed s = smooth(cactus);
-  EXPECT_EQ(s.three.dependent_edges, 2u);
-  EXPECT_EQ(s.six.dependent_edges, 0u);
+  EXPECT_EQ(s.three.dependent_edges.size(), 2u);
+  EXPECT_EQ(s.six.dependent_edges.size(), 0u);
   EXPECT_LT(verify_g1(s.six).max_normal_angle, 1e-8);
 }
 
@@ -104,11 +104,17 @@ TEST(SixSplit, NeitherFoldsNorBulgesOnAScannedBoundary) {
   const auto [N, edges] = test::scheme_input(mesh);
   const BezierSurface exact = six_split(V, mesh.faces, N, edges);
   EXPECT_LT(verify_g1(exact).max_normal_angle, M_PI / 2);
-  EXPECT_LT(exact.dependent_edges, 10u);  // only the folds are not G¹
+  EXPECT_LT(exact.dependent_edges.size(), 10u);  // only the folds are counted
+  // With max_move every edge not counted is G¹ to rounding; the counted ones
+  // are not. (Without it, one edge whose exact solution bulges is not G¹
+  // although its constraints hold, 0.02 rad; docs/design.md, six-split.)
   const BezierSurface bounded = six_split(V, mesh.faces, N, edges, 1.0 / 3.0, 1.0);
-  EXPECT_LT(verify_g1(bounded).max_normal_angle, M_PI / 2);
+  const G1Verification bounded_g1 = verify_g1(bounded);
+  EXPECT_LT(bounded_g1.max_normal_angle, M_PI / 2);
+  EXPECT_GT(bounded_g1.max_normal_angle, 0.1);
+  EXPECT_LT(bounded_g1.max_normal_angle_exact, 1e-8);
   EXPECT_LE(oscillation(bounded, V, mesh.faces).max_relative, 1.0);
-  EXPECT_LT(bounded.dependent_edges, mesh.face_count() / 50);  // of 1.5 × faces macro edges
+  EXPECT_LT(bounded.dependent_edges.size(), mesh.face_count() / 50);  // of 1.5 × faces macro edges
   EXPECT_EQ(test::expect_interpolates(bounded, V, mesh.faces, N), 6u * mesh.face_count());
 }
 
@@ -132,15 +138,16 @@ TEST(SixSplit, CubeCornersGetNormalsThatKeepTheCrossEdgePointsApart) {
   Eigen::MatrixX3d N = vertex_normals(V, cube.faces);
   const MeshEdges edges = mesh_edges(cube.faces);
   const BezierSurface before = six_split(V, cube.faces, N, edges);
-  EXPECT_GT(before.dependent_edges, 0u);
+  EXPECT_GT(before.dependent_edges.size(), 0u);
   EXPECT_GT(verify_g1(before).max_normal_angle, 0.1);
+  EXPECT_LT(verify_g1(before).max_normal_angle_exact, 1e-8);  // the counted edges are the only ones not G¹
 
   const std::vector<int> adjusted = separate_cross_edge_directions(V, cube.faces, edges, CrossEdgePoints::step_zero, N);
   EXPECT_FALSE(adjusted.empty());
   EXPECT_TRUE(sign_condition_violations(V, cube.faces, N).empty());
   EXPECT_TRUE(separate_cross_edge_directions(V, cube.faces, edges, CrossEdgePoints::step_zero, N).empty());
   const BezierSurface after = six_split(V, cube.faces, N, edges);
-  EXPECT_EQ(after.dependent_edges, 0u);
+  EXPECT_EQ(after.dependent_edges.size(), 0u);
   EXPECT_LT(verify_g1(after).max_normal_angle, 1e-8);
   EXPECT_EQ(smooth_surface(cube).adjusted_vertices, adjusted);  // the command does the same
 }

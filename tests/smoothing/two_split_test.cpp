@@ -76,7 +76,7 @@ TwoSplitCounts expect_g1(const TriangleMesh& mesh, double min_angle_degrees, con
   EXPECT_GT(two, 0u) << name << ": the two-split was not used (" << s.pairs.size() << " candidates)";
   EXPECT_LE(two, 2 * s.pairs.size()) << name;
   EXPECT_EQ(s.surface.patches.size(), 3u * mesh.face_count() - two) << name;
-  EXPECT_EQ(s.surface.dependent_edges, 0u) << name;
+  EXPECT_EQ(s.surface.dependent_edges.size(), 0u) << name;
   // Every macro vertex of every patch: 6 per three-split triangle, 4 per two-split one.
   EXPECT_EQ(test::expect_interpolates(s.surface, mesh.vertices.positions, mesh.faces, s.normals),
             6u * mesh.face_count() - 2u * two)
@@ -136,8 +136,8 @@ TEST(TwoSplit, BoundedStepsRemoveTheBulges) {
   options.max_move = 1.0;
   const Smoothed bounded = smooth(mesh, 40.0, options);
   EXPECT_LE(oscillation(bounded.surface, V, mesh.faces).max_relative, 1.5);
-  EXPECT_GT(bounded.surface.dependent_edges, 0u);
-  EXPECT_LT(bounded.surface.dependent_edges, mesh.face_count() / 25);  // of 1.5 × faces macro edges
+  EXPECT_GT(bounded.surface.dependent_edges.size(), 0u);
+  EXPECT_LT(bounded.surface.dependent_edges.size(), mesh.face_count() / 25);  // of 1.5 × faces macro edges
   EXPECT_EQ(test::expect_interpolates(bounded.surface, V, mesh.faces, bounded.normals),
             test::expect_interpolates(exact.surface, V, mesh.faces, exact.normals));
 }
