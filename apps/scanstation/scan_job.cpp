@@ -222,11 +222,12 @@ void print_results(const nlohmann::json& r) {
     if (s.contains("error"))
       std::printf("smoothing failed: %s\n", s["error"].get<std::string>().c_str());
     else
-      std::printf("smooth surface: %zu cubic patches (%s), largest normal angle across patch edges %.2g rad "
-                  "(%.2g rad away from the %zu macro edges joined approximately)\n",
+      std::printf("smooth surface: %zu cubic patches (%s), largest normal angle across patch edges %.2g rad, "
+                  "%.2g rad away from the %zu macro edges joined approximately (the sign condition fails at %zu "
+                  "vertices)\n",
                   s["patches"].get<std::size_t>(), s["scheme"].get<std::string>().c_str(),
                   s["g1"]["max_normal_angle"].get<double>(), s["g1"]["max_normal_angle_where_exact"].get<double>(),
-                  s["dependent_edges"].get<std::size_t>());
+                  s["dependent_edges"].get<std::size_t>(), s["sign_condition_violations"].get<std::size_t>());
   }
   if (r.contains("accuracy")) {
     const nlohmann::json& a = r["accuracy"];
