@@ -16,9 +16,10 @@ namespace scanstation {
 ///               without a partner (the surface is not closed)
 struct G1Verification {
   double max_normal_angle = 0.0;
-  /// the same over the patch edges not on a macro edge of
-  /// surface.dependent_edges: where the scheme joined the patches exactly,
-  /// at rounding level when the surface is G¹ there
+  /// the same over the patch edges neither on a macro edge of
+  /// surface.dependent_edges nor inside its two macro triangles: where the
+  /// scheme joined the patches exactly, at rounding level when the surface
+  /// is G¹ there (not at vertices where the sign condition fails)
   double max_normal_angle_exact = 0.0;
   double max_residual = 0.0;
   std::size_t shared_edges = 0;
