@@ -227,8 +227,17 @@ bool closest_solution(Points& x, const Points& old, double phi, double psi, cons
   cod.setThreshold(1e-6);
   cod.compute(A);
   x = old + cod.solve(r);
-  if ((x - old).rowwise().norm().maxCoeff() <= reach)
-    return (A.lazyProduct(x) - rhs).norm() <= 1e-10 * (rhs.norm() + A.lazyProduct(old).norm() + old.norm());
+  if ((x - old).rowwise().norm().maxCoeff() <= reach) {
+    // Met when every constraint holds to a rounding-level share of the
+    // points' scale, each row divided by its own coefficients: a tolerance
+    // scaled by all of them together let a row with coefficients in the
+    // thousands miss by 1e-9 edge lengths, and the edge by 0.02 rad.
+    const Eigen::Matrix<double, 8, 3> miss = A.lazyProduct(x) - rhs;
+    const double scale = old.norm() + rhs.norm();
+    for (int i = 0; i < 8; ++i)
+      if (miss.row(i).norm() > 1e-12 * A.row(i).norm() * scale) return false;
+    return true;
+  }
   x = old + damped_step(A, r, reach);
   return false;
 }
