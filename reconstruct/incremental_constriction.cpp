@@ -126,14 +126,18 @@ struct IncrementalConstriction::State {
   Vertex hint;
   bool started = false;
 
-  // The finite cells around each point, found once per batch (insertion
-  // alone changes them) by a walk across the faces at the point, all stars
-  // of a batch in one array.
+  // The finite cells around each point, found by a walk across the faces at
+  // the point, all stars in one array. Insertion alone changes them: a
+  // batch's stars are kept for the next one where its insertion left them
+  // as they were (carry_stars_over), which in scan order is most of the
+  // next repair's points (the margin rings move on by a batch's width).
   std::vector<int> star_slot;  // per point: its entry in star_range, else −1
   std::vector<std::array<std::size_t, 2>> star_range;
   std::vector<char> star_on_hull;  // per entry of star_range: an infinite cell is around the point
+  std::vector<char> star_used;     // per entry of star_range: asked for in this batch
   std::vector<Cell> star_cells;
-  std::vector<int> starred;
+  std::vector<int> starred;          // the points with a slot, in the order their stars were found
+  std::vector<char> star_changed;    // scratch: the insertion changed the point's star
   std::vector<Cell> walk;
   unsigned visit_stamp = 0;
 
@@ -183,16 +187,55 @@ struct IncrementalConstriction::State {
       }
       star_range.push_back({from, star_cells.size()});
       star_on_hull.push_back(on_hull);
+      star_used.push_back(0);
     }
+    star_used[static_cast<std::size_t>(slot)] = 1;
     const auto& r = star_range[static_cast<std::size_t>(slot)];
     return {star_cells.data() + r[0], star_cells.data() + r[1]};
   }
-  void forget_stars() {
-    for (const int id : starred) star_slot[static_cast<std::size_t>(id)] = -1;
-    starred.clear();
-    star_range.clear();
-    star_on_hull.clear();
-    star_cells.clear();
+  // After a batch's insertion: keeps the stars the last batch used that the
+  // insertion did not change, forgets the others. A point's star changes
+  // only when a cell around it is destroyed, and the cavity then makes new
+  // cells at that point and the new one; later insertions of the batch that
+  // destroy those make others with it and their own new point. So the
+  // changed stars are those of the points of the cells around the new
+  // points (whose stars are found here first; all are kept).
+  void carry_stars_over(const std::vector<Vertex>& fresh) {
+    std::vector<int> changed;
+    for (const Vertex v : fresh)
+      for (const Cell c : star(v))
+        for (int k = 0; k < 4; ++k) {
+          const auto id = static_cast<std::size_t>(c->vertex(k)->info());
+          if (star_slot[id] >= 0 && !star_changed[id] && c->vertex(k) != v) {
+            star_changed[id] = 1;
+            changed.push_back(static_cast<int>(id));
+          }
+        }
+    for (const Vertex v : fresh) star_changed[static_cast<std::size_t>(v->info())] = 0;  // found just now
+    std::vector<int> kept_points;
+    std::vector<std::array<std::size_t, 2>> ranges;
+    std::vector<char> on_hull;
+    std::vector<Cell> cells;
+    for (const int id : starred) {
+      int& slot = star_slot[static_cast<std::size_t>(id)];
+      if (star_changed[static_cast<std::size_t>(id)] || !star_used[static_cast<std::size_t>(slot)]) {
+        slot = -1;
+        continue;
+      }
+      const auto& r = star_range[static_cast<std::size_t>(slot)];
+      ranges.push_back({cells.size(), cells.size() + (r[1] - r[0])});
+      cells.insert(cells.end(), star_cells.begin() + static_cast<std::ptrdiff_t>(r[0]),
+                   star_cells.begin() + static_cast<std::ptrdiff_t>(r[1]));
+      on_hull.push_back(star_on_hull[static_cast<std::size_t>(slot)]);
+      slot = static_cast<int>(kept_points.size());
+      kept_points.push_back(id);
+    }
+    for (const int id : changed) star_changed[static_cast<std::size_t>(id)] = 0;
+    starred = std::move(kept_points);
+    star_range = std::move(ranges);
+    star_on_hull = std::move(on_hull);
+    star_used.assign(starred.size(), 0);
+    star_cells = std::move(cells);
   }
 
   // The boundary triangles at v, as their edges opposite v.
@@ -681,6 +724,7 @@ struct IncrementalConstriction::State {
     fill_vertex.resize(points.size(), -1);
     inner.resize(points.size(), 0);
     repaired_by.resize(points.size(), -1);
+    star_changed.resize(points.size(), 0);
     received += batch.rows();
     return fresh;
   }
@@ -773,6 +817,7 @@ struct IncrementalConstriction::State {
   // Fill, check, constrict again (see the class comment).
   void repair(const std::vector<Vertex>& fresh, BatchStats& s) {
     std::vector<Cell> region;
+    carry_stars_over(fresh);
     for (const Vertex v : fresh) {  // the new cells, in a deterministic order
       for (const Cell c : star(v))
         if (c->info().local < 0) {
@@ -866,7 +911,6 @@ BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch, con
       s.repair(fresh, stats);
     }
   }
-  s.forget_stars();
   stats.points_so_far = s.points.size();
   stats.pending = s.pending_count;
   stats.all_on_boundary = s.started && s.pending_count == 0;
