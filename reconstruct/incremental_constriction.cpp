@@ -16,6 +16,7 @@
 #include <chrono>
 #include <iterator>
 #include <numeric>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,7 +64,7 @@ int euler_share(int f) { return f > 0 ? 6 - f : 0; }
 // ends as vertex handles, compared without reading the vertices) is a
 // single cycle: the surface is a 2-manifold there.
 using LinkEdge = std::array<Vertex, 2>;
-bool single_cycle(const std::vector<LinkEdge>& link) {
+bool single_cycle(std::span<const LinkEdge> link) {
   if (link.empty()) return true;
   for (const auto& e : link)
     for (const Vertex end : e) {
@@ -238,19 +239,38 @@ struct IncrementalConstriction::State {
     star_cells = std::move(cells);
   }
 
-  // The boundary triangles at v, as their edges opposite v.
-  void boundary_link(Vertex v, std::vector<LinkEdge>& link) {
-    for (const Cell c : star(v)) {
-      if (!c->info().kept) continue;
-      const int iv = c->index(v);
-      for (int i = 0; i < 4; ++i) {
-        if (i == iv || kept(c->neighbor(i))) continue;
-        LinkEdge e{};
-        for (int k = 0, n = 0; k < 4; ++k)
-          if (k != iv && k != i) e[static_cast<std::size_t>(n++)] = c->vertex(k);
-        link.push_back(e);
+  // The boundary triangles at each of `at` (as their edges opposite the
+  // point): link[first[k], first[k + 1]) are those at at[k]. Each cell
+  // around the points is looked at once, for all of its points that ask: a
+  // cell is around four points, and a region's points are mostly all asked
+  // about at once.
+  void boundary_links(const std::vector<Vertex>& at, std::vector<LinkEdge>& link, std::vector<std::size_t>& first) {
+    for (const Vertex v : at) star(v);  // found now: the loop below walks no more (walks use the cells' marks)
+    for (std::size_t k = 0; k < at.size(); ++k) local_vertex[static_cast<std::size_t>(at[k]->info())] = static_cast<int>(k);
+    std::vector<std::pair<int, LinkEdge>> found;  // (k, edge at at[k])
+    std::vector<Cell> looked;
+    for (const Vertex v : at)
+      for (const Cell c : star(v)) {
+        if (c->info().local == 0) continue;
+        c->info().local = 0;
+        looked.push_back(c);
+        if (!c->info().kept) continue;
+        for (int i = 0; i < 4; ++i) {
+          if (kept(c->neighbor(i))) continue;
+          for (int a = 1; a < 4; ++a) {  // the triangle opposite i, at its point (i + a) % 4
+            const int k = local_vertex[static_cast<std::size_t>(c->vertex((i + a) % 4)->info())];
+            if (k >= 0) found.push_back({k, {c->vertex((i + a % 3 + 1) % 4), c->vertex((i + (a + 1) % 3 + 1) % 4)}});
+          }
+        }
       }
-    }
+    for (const Cell c : looked) c->info().local = -1;
+    for (const Vertex v : at) local_vertex[static_cast<std::size_t>(v->info())] = -1;
+    first.assign(at.size() + 1, 0);  // counting sort by point
+    for (const auto& [k, e] : found) ++first[static_cast<std::size_t>(k) + 1];
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    link.resize(found.size());
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (const auto& [k, e] : found) link[next[static_cast<std::size_t>(k)]++] = e;
   }
 
   // The distinct finite vertices of `cells`.
@@ -435,20 +455,27 @@ struct IncrementalConstriction::State {
   bool fill_to_ball(std::vector<Cell>& region, FillParts& parts) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
-    std::vector<Vertex> known;
+    std::vector<Vertex> known, linked;
     std::vector<LinkEdge> link;
-    const auto refresh = [&](Vertex v) {
-      const auto id = static_cast<std::size_t>(v->info());
-      if (f_now[id] < 0) known.push_back(v);
-      if (inner[id]) {  // every cell around v is filled: no boundary triangle at v
-        f_now[id] = 0;
-        pinched_now[id] = 0;
-        return;
+    std::vector<std::size_t> first;
+    const auto refresh = [&](const std::vector<Vertex>& points) {
+      linked.clear();
+      for (const Vertex v : points) {
+        const auto id = static_cast<std::size_t>(v->info());
+        if (f_now[id] < 0) known.push_back(v);
+        if (inner[id]) {  // every cell around v is filled: no boundary triangle at v
+          f_now[id] = 0;
+          pinched_now[id] = 0;
+        } else {
+          linked.push_back(v);
+        }
       }
-      link.clear();
-      boundary_link(v, link);
-      f_now[id] = static_cast<int>(link.size());
-      pinched_now[id] = !single_cycle(link);
+      boundary_links(linked, link, first);
+      for (std::size_t k = 0; k < linked.size(); ++k) {
+        const auto id = static_cast<std::size_t>(linked[k]->info());
+        f_now[id] = static_cast<int>(first[k + 1] - first[k]);
+        pinched_now[id] = !single_cycle(std::span<const LinkEdge>(link).subspan(first[k], first[k + 1] - first[k]));
+      }
     };
     bool ball = false;
     std::size_t checked = 0, pockets_checked = 0;
@@ -459,7 +486,7 @@ struct IncrementalConstriction::State {
       // A point's pinch changes only with its star: the candidates are the
       // points refreshed now and those pinched before.
       std::vector<Vertex> candidates = vertices_of(filled);
-      for (const Vertex v : candidates) refresh(v);
+      refresh(candidates);
       candidates.insert(candidates.end(), pinched.begin(), pinched.end());
       pinched.clear();
       for (const Vertex v : candidates) {
