@@ -117,7 +117,10 @@ struct IncrementalConstriction::State {
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
   std::vector<int> fill_vertex;         // scratch: a point's number in FillParts, else −1
-  std::vector<char> inner;              // scratch: every cell around the point is in the fill, none infinite
+  // scratch: every finite cell around the point is in the fill, so its
+  // boundary triangles are its convex hull triangles (a disk: not pinched),
+  // inner[v] of them; −1 otherwise
+  std::vector<int> inner;
   std::vector<int> inner_points;        // the points with inner set
   std::vector<int> repaired_by;         // scratch: the last region of this batch's repair holding the point, else −1
   std::vector<int> patch_vertices;      // the points with repaired_by set
@@ -134,7 +137,7 @@ struct IncrementalConstriction::State {
   // next repair's points (the margin rings move on by a batch's width).
   std::vector<int> star_slot;  // per point: its entry in star_range, else −1
   std::vector<std::array<std::size_t, 2>> star_range;
-  std::vector<char> star_on_hull;  // per entry of star_range: an infinite cell is around the point
+  std::vector<int> star_hull;      // per entry of star_range: the infinite cells around the point (its hull triangles)
   std::vector<char> star_used;     // per entry of star_range: asked for in this batch
   std::vector<Cell> star_cells;
   std::vector<int> starred;          // the points with a slot, in the order their stars were found
@@ -166,7 +169,7 @@ struct IncrementalConstriction::State {
         visit_stamp = 1;
       }
       const unsigned stamp = visit_stamp;
-      char on_hull = 0;
+      int on_hull = 0;
       walk.assign(1, v->cell());
       v->cell()->info().visit = stamp;
       while (!walk.empty()) {
@@ -174,7 +177,7 @@ struct IncrementalConstriction::State {
         walk.pop_back();
         if (!dt.is_infinite(c)) star_cells.push_back(c);
         else {
-          on_hull = 1;
+          ++on_hull;
           c->info().kept = 0;
         }
         for (int i = 0; i < 4; ++i) {
@@ -187,7 +190,7 @@ struct IncrementalConstriction::State {
         }
       }
       star_range.push_back({from, star_cells.size()});
-      star_on_hull.push_back(on_hull);
+      star_hull.push_back(on_hull);
       star_used.push_back(0);
     }
     star_used[static_cast<std::size_t>(slot)] = 1;
@@ -215,7 +218,7 @@ struct IncrementalConstriction::State {
     for (const Vertex v : fresh) star_changed[static_cast<std::size_t>(v->info())] = 0;  // found just now
     std::vector<int> kept_points;
     std::vector<std::array<std::size_t, 2>> ranges;
-    std::vector<char> on_hull;
+    std::vector<int> on_hull;
     std::vector<Cell> cells;
     for (const int id : starred) {
       int& slot = star_slot[static_cast<std::size_t>(id)];
@@ -227,14 +230,14 @@ struct IncrementalConstriction::State {
       ranges.push_back({cells.size(), cells.size() + (r[1] - r[0])});
       cells.insert(cells.end(), star_cells.begin() + static_cast<std::ptrdiff_t>(r[0]),
                    star_cells.begin() + static_cast<std::ptrdiff_t>(r[1]));
-      on_hull.push_back(star_on_hull[static_cast<std::size_t>(slot)]);
+      on_hull.push_back(star_hull[static_cast<std::size_t>(slot)]);
       slot = static_cast<int>(kept_points.size());
       kept_points.push_back(id);
     }
     for (const int id : changed) star_changed[static_cast<std::size_t>(id)] = 0;
     starred = std::move(kept_points);
     star_range = std::move(ranges);
-    star_on_hull = std::move(on_hull);
+    star_hull = std::move(on_hull);
     star_used.assign(starred.size(), 0);
     star_cells = std::move(cells);
   }
@@ -463,8 +466,8 @@ struct IncrementalConstriction::State {
       for (const Vertex v : points) {
         const auto id = static_cast<std::size_t>(v->info());
         if (f_now[id] < 0) known.push_back(v);
-        if (inner[id]) {  // every cell around v is filled: no boundary triangle at v
-          f_now[id] = 0;
+        if (inner[id] >= 0) {  // every finite cell around v is filled: its hull triangles alone
+          f_now[id] = inner[id];
           pinched_now[id] = 0;
         } else {
           linked.push_back(v);
@@ -749,7 +752,7 @@ struct IncrementalConstriction::State {
     pending.resize(points.size(), 0);
     pinched_now.resize(points.size(), 0);
     fill_vertex.resize(points.size(), -1);
-    inner.resize(points.size(), 0);
+    inner.resize(points.size(), -1);
     repaired_by.resize(points.size(), -1);
     star_changed.resize(points.size(), 0);
     received += batch.rows();
@@ -811,14 +814,13 @@ struct IncrementalConstriction::State {
             front.push_back(c);
           }
     }
-    // The points looked around in both steps have all their cells in the
-    // front (filled): fill_to_ball knows they bound nothing.
+    // The points looked around in both steps have all their finite cells in
+    // the front (filled): fill_to_ball knows their boundary triangles are
+    // their convex hull triangles (none inside the hull), which form a disk.
     for (std::size_t k = 0; k < std::min(kept_done, removed_done); ++k) {
       const auto id = static_cast<std::size_t>(known[k]->info());
-      if (!star_on_hull[static_cast<std::size_t>(star_slot[id])]) {
-        inner[id] = 1;
-        inner_points.push_back(static_cast<int>(id));
-      }
+      inner[id] = star_hull[static_cast<std::size_t>(star_slot[id])];
+      inner_points.push_back(static_cast<int>(id));
     }
     for (const Vertex v : known) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
     // The skin: layers of cells across a face from the rings, kept and
@@ -856,7 +858,7 @@ struct IncrementalConstriction::State {
     region = with_margin(region, fresh);
     FillParts parts;
     const bool ball = fill_to_ball(region, parts);
-    for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = 0;
+    for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = -1;
     inner_points.clear();
     if (ball) {
       // Each connected part of the fill is constricted on its own, so a part
