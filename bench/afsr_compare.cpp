@@ -3,7 +3,7 @@
 // (their original triangles are the known answer).
 //
 //   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton]
-//                            [--flips area|area-then-delaunay|off] MESH.off ...
+//                            [--flips area|area-then-delaunay|off] [--unfold on|off] MESH.off ...
 //
 // --method picks our side: by default what `scanstation reconstruct` does in
 // 3D (area change and γ-indicator), or the thesis' γ-indicator, or one of the
@@ -88,6 +88,8 @@ static int run(int argc, char** argv) {
       const std::string flips = argv[++a];
       if (flips == "area-then-delaunay") options.flips = FlipCriterion::area_then_delaunay;
       if (flips == "off") options.flips.reset();
+    } else if (std::string(argv[a]) == "--unfold" && a + 1 < argc) {
+      options.unfold = std::string(argv[++a]) != "off";
     } else if (std::string(argv[a]) == "--method" && a + 1 < argc) {
       const std::string method = argv[++a];
       if (method == "min-area-change") options.constriction.criterion = ConstrictionCriterion::minimal_area_change;

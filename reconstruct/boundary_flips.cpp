@@ -16,17 +16,6 @@ namespace {
 
 using Triangle = BoundarySurface::Triangle;
 
-// The face holding the directed edge a → b, and its third vertex.
-std::pair<int, int> face_with(const BoundarySurface& s, int a, int b) {
-  for (const int f : s.faces_at(a)) {
-    const Triangle& t = s.face(f);
-    for (int k = 0; k < 3; ++k)
-      if (t[static_cast<std::size_t>(k)] == a && t[static_cast<std::size_t>((k + 1) % 3)] == b)
-        return {f, t[static_cast<std::size_t>((k + 2) % 3)]};
-  }
-  return {-1, -1};
-}
-
 // The measures both criteria read off an edge (a, b) between the faces
 // (a, b, c) and (b, a, d).
 double area(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
@@ -58,41 +47,15 @@ double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen:
 }
 
 // Edges (a < b) worth a flip, found from the face list alone, so that a
-// surface with none costs two linear passes and no spatial index. The
-// half-edges are bucketed by their lower vertex (counting sort: a
-// million-face surface has six million half-edges, too many for a
-// comparison sort to be cheap), then paired within each small bucket.
+// surface with none costs two linear passes and no spatial index.
 std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F,
                                                  FlipCriterion criterion, double min_gain) {
-  struct Half {
-    int hi, opposite;
-    bool forward;
-  };
-  std::vector<std::size_t> start(static_cast<std::size_t>(P.rows()) + 1, 0);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) ++start[static_cast<std::size_t>(std::min(F(f, k), F(f, (k + 1) % 3))) + 1];
-  for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
-  std::vector<Half> halves(start.back());
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int u = F(f, k), v = F(f, (k + 1) % 3);
-      halves[fill[static_cast<std::size_t>(std::min(u, v))]++] = {std::max(u, v), F(f, (k + 2) % 3), u < v};
-    }
   std::vector<std::pair<int, int>> out;
-  for (std::size_t lo = 0; lo + 1 < start.size(); ++lo) {
-    const auto first = halves.begin() + static_cast<std::ptrdiff_t>(start[lo]);
-    const auto last = halves.begin() + static_cast<std::ptrdiff_t>(start[lo + 1]);
-    std::sort(first, last, [](const Half& x, const Half& y) { return std::tie(x.hi, x.forward) < std::tie(y.hi, y.forward); });
-    for (auto x = first; x != last && x + 1 != last; ++x) {
-      const auto y = x + 1;
-      if (x->hi != y->hi) continue;
-      // y runs lo → hi (forward sorts last): its face is (lo, hi, y->opposite).
-      if (flip_gain(criterion, P.row(static_cast<Eigen::Index>(lo)).transpose(), P.row(x->hi).transpose(),
-                    P.row(y->opposite).transpose(), P.row(x->opposite).transpose(), min_gain) > 0)
-        out.emplace_back(static_cast<int>(lo), x->hi);
-    }
-  }
+  for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) {
+    if (flip_gain(criterion, P.row(lo).transpose(), P.row(hi).transpose(), P.row(c).transpose(), P.row(d).transpose(),
+                  min_gain) > 0)
+      out.emplace_back(lo, hi);
+  });
   return out;
 }
 
@@ -170,8 +133,8 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
   };
   std::priority_queue<Candidate> edges;
   const auto gain_of = [&](int a, int b) {
-    const auto [f1, c] = face_with(surface, a, b);
-    const auto [f2, d] = face_with(surface, b, a);
+    const auto [f1, c] = surface.face_with(a, b);
+    const auto [f2, d] = surface.face_with(b, a);
     if (f1 < 0 || f2 < 0 || c == d) return 0.0;
     return flip_gain(criterion, surface.point(a), surface.point(b), surface.point(c), surface.point(d), min_gain);
   };
@@ -183,8 +146,8 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
     const Candidate top = edges.top();
     edges.pop();
     const int a = top.a, b = top.b;
-    const auto [f1, c] = face_with(surface, a, b);
-    const auto [f2, d] = face_with(surface, b, a);
+    const auto [f1, c] = surface.face_with(a, b);
+    const auto [f2, d] = surface.face_with(b, a);
     if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
     if (!(gain_of(a, b) > 0)) continue;
     const Triangle g1{a, d, c}, g2{d, b, c};

@@ -234,12 +234,20 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
     s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt);
     s.flip_seconds = seconds_since(start);
   }
+  if (options.unfold) {
+    const auto start = std::chrono::steady_clock::now();
+    const UnfoldStatistics u = unfold_boundary(dt.points, out.mesh.faces, options.constriction.keep);
+    s.folds = u.folds_before;
+    s.folds_left = u.folds_after;
+    s.unfolded = u.retriangulated;
+    s.flip_seconds += seconds_since(start);
+  }
   std::vector<Eigen::Index> kept;
   for (std::size_t k = 0; k < c.kept.size(); ++k)
     if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
   out.interior.resize(static_cast<Eigen::Index>(kept.size()), 4);
   for (std::size_t k = 0; k < kept.size(); ++k) out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
-  if (s.carved > 0 || s.flips > 0) out.interior.resize(0, 4);
+  if (s.carved > 0 || s.flips > 0 || s.unfolded > 0) out.interior.resize(0, 4);
   s.enclosed_measure = enclosed_volume(out.mesh.vertices.positions, out.mesh.faces);
   fill_statistics(s, dt, c);
   s.kept_faces_on_boundary = faces_on(options.constriction.keep, Eigen::MatrixXi(out.mesh.faces));

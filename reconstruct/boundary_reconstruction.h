@@ -9,6 +9,7 @@
 #include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
 #include "reconstruct/line_of_sight.h"
+#include "reconstruct/unfold_boundary.h"
 #include "reconstruct/voronoi_skeleton.h"
 
 #include <optional>
@@ -46,6 +47,9 @@ struct ReconstructionOptions {
   /// random sample of a convex surface, where area flips find nothing);
   /// nullopt: keep constriction's triangles as they are.
   std::optional<FlipCriterion> flips = FlipCriterion::area;
+  /// 3D: then re-triangulate flat the places where the surface folds back on
+  /// itself (reconstruct/unfold_boundary.h).
+  bool unfold = true;
   /// 3D: where the points were seen from (indices into the input points):
   /// the Delaunay cells these lines of sight cross are carved first
   /// (reconstruct/line_of_sight.h, ConstrictionOptions::carve_first).
@@ -65,6 +69,9 @@ struct BoundaryStatistics {
   std::size_t carved = 0;                 ///< tetrahedra carved by augmentation
   std::size_t kept_faces_on_boundary = 0; ///< of the faces asked to stay (§5.7), how many are on the boundary
   std::size_t flips = 0;                  ///< edge flips made after constriction
+  std::size_t folds = 0;                  ///< fold edges (faces turning by more than 120°) after the flips
+  std::size_t folds_left = 0;             ///< of them, left after unfolding
+  std::size_t unfolded = 0;               ///< fold patches re-triangulated flat
   std::size_t guide_faces = 0;            ///< faces kept by γ-guided constriction
   std::size_t sight_line_cells = 0;       ///< Delaunay cells crossed by the lines of sight
   double flip_seconds = 0.0;

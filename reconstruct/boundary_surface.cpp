@@ -98,6 +98,16 @@ bool BoundarySurface::has_edge(int u, int v) const {
   return false;
 }
 
+std::pair<int, int> BoundarySurface::face_with(int a, int b) const {
+  for (const int f : faces_at(a)) {
+    if (!alive(f)) continue;
+    const Triangle& t = face(f);
+    for (std::size_t k = 0; k < 3; ++k)
+      if (t[k] == a && t[(k + 1) % 3] == b) return {f, t[(k + 2) % 3]};
+  }
+  return {-1, -1};
+}
+
 bool BoundarySurface::improper(const Triangle& s, const Triangle& t) const {
   std::array<int, 3> shared{};
   int n = 0;

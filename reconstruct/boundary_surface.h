@@ -17,7 +17,9 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace scanstation {
@@ -229,6 +231,41 @@ class PointTree {
   std::vector<Node> nodes_;                 // implicit binary tree: children 2i+1, 2i+2
 };
 
+/// Calls f(lo, hi, c, d) for every edge lo < hi shared by a face (lo, hi, c)
+/// and a face (hi, lo, d) of the closed, oriented surface F over n points,
+/// in order of lo: linear time (half-edges bucketed by their lower vertex
+/// by counting sort, then paired within each small bucket — a
+/// million-face surface has six million half-edges, too many for a
+/// comparison sort to be cheap). Unpaired half-edges are skipped.
+template <typename Fn>
+void for_each_edge(Eigen::Index n, const Eigen::MatrixX3i& F, Fn&& f) {
+  struct Half {
+    int hi, opposite;
+    bool forward;
+  };
+  std::vector<std::size_t> start(static_cast<std::size_t>(n) + 1, 0);
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) ++start[static_cast<std::size_t>(std::min(F(t, k), F(t, (k + 1) % 3))) + 1];
+  for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  std::vector<Half> halves(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int u = F(t, k), v = F(t, (k + 1) % 3);
+      halves[fill[static_cast<std::size_t>(std::min(u, v))]++] = {std::max(u, v), F(t, (k + 2) % 3), u < v};
+    }
+  for (std::size_t lo = 0; lo + 1 < start.size(); ++lo) {
+    const auto first = halves.begin() + static_cast<std::ptrdiff_t>(start[lo]);
+    const auto last = halves.begin() + static_cast<std::ptrdiff_t>(start[lo + 1]);
+    std::sort(first, last, [](const Half& x, const Half& y) { return std::tie(x.hi, x.forward) < std::tie(y.hi, y.forward); });
+    for (auto x = first; x != last && x + 1 != last; ++x) {
+      const auto y = x + 1;
+      // y runs lo → hi (forward sorts last): its face is (lo, hi, y->opposite).
+      if (x->hi == y->hi) f(static_cast<int>(lo), x->hi, y->opposite, x->opposite);
+    }
+  }
+}
+
 /// faces are counter-clockwise seen from outside; ids stay valid (a removed
 /// face is marked dead, new faces get new ids).
 class BoundarySurface {
@@ -250,6 +287,9 @@ class BoundarySurface {
   bool on_boundary(int v) const { return on_boundary_[static_cast<std::size_t>(v)] != 0; }
   /// An alive face holds the edge (u, v).
   bool has_edge(int u, int v) const;
+  /// The alive face holding the directed edge a → b and its third vertex;
+  /// (-1, -1) if there is none.
+  std::pair<int, int> face_with(int a, int b) const;
 
   Eigen::Vector3d point(int i) const { return P_.row(i).transpose(); }
   const Kernel::Point_3& exact(int i) const { return cgal_[static_cast<std::size_t>(i)]; }

@@ -35,6 +35,9 @@ nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Ei
           {"c0_used", s.c0_used ? nlohmann::json(*s.c0_used) : nlohmann::json(nullptr)},
           {"carved", s.carved},
           {"flips", s.flips},
+          {"folds", s.folds},
+          {"folds_left", s.folds_left},
+          {"unfolded_patches", s.unfolded},
           {"guide_faces", s.guide_faces},
           {"sight_line_cells", s.sight_line_cells}};
 }
@@ -61,6 +64,11 @@ class ReconstructCommand final : public Command {
                      "area-then-delaunay (then Delaunay flips where the surface is nearly flat: more true triangles, "
                      "slower on smooth convex samples) or off")
         ->check(CLI::IsMember({"area-then-delaunay", "area", "off"}))
+        ->capture_default_str();
+    cli_->add_option("--unfold", unfold_,
+                     "3D, last: where the surface folds back on itself (faces turning by more than 120°) in a nearly "
+                     "flat patch, re-triangulate the patch flat (on) or keep it (off)")
+        ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     cli_->add_option("--guide", guide_,
                      "3D γ-guided constriction: keep Delaunay faces whose two γ-indicators are ≥ C0 and one ≥ C1, "
@@ -101,6 +109,7 @@ class ReconstructCommand final : public Command {
     options_.constriction.until_indicator = until_;
     if (flips_ == "off") options_.flips.reset();
     if (flips_ == "area-then-delaunay") options_.flips = FlipCriterion::area_then_delaunay;
+    options_.unfold = unfold_ == "on";
     configure_guide();
     if (method_ == "voronoi-skeleton") options_.voronoi_skeleton = VoronoiSkeletonOptions{seeds_};
     configure_augmentation();
@@ -145,8 +154,8 @@ class ReconstructCommand final : public Command {
       io::write_mesh(output_, r.mesh, write);
       if (interior_) {
         if (r.interior.rows() == 0)
-          throw InvalidInput("--interior: augmentation or flips changed the boundary away from the Delaunay cells, "
-                             "so no interior triangulation is available (use --augment off --flips off)");
+          throw InvalidInput("--interior: augmentation, flips or unfolding changed the boundary away from the Delaunay cells, "
+                             "so no interior triangulation is available (use --augment off --flips off --unfold off)");
         if (interior_->extension() != ".vtk")
           throw InvalidInput("--interior " + interior_->string() + ": 3D interiors are tetrahedra, written as .vtk");
         io::write_file_atomically(*interior_, io::write_vtk_cells(r.mesh.vertices.positions, r.interior),
@@ -246,6 +255,7 @@ class ReconstructCommand final : public Command {
   std::string method_ = "auto";
   std::size_t seeds_ = VoronoiSkeletonOptions{}.max_seeds;
   std::string flips_ = "area";
+  std::string unfold_ = "on";
   std::string guide_ = "0.7,0";
   std::optional<std::filesystem::path> keep_, interior_, viewpoints_;
   std::vector<double> viewpoint_;

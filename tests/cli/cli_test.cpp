@@ -229,7 +229,7 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   const std::string cow = path(test::cgal_data("meshes/cow.off"));
   // The thesis' γ-indicator locks on the cow (§5.4); augmentation gets past it.
   Outcome r = scanstation("reconstruct " + cow + " -o " + path(dir / "a.off") +
-                          " --method gamma --augment off --flips off --interior " + path(dir / "a.vtk") + " --report " +
+                          " --method gamma --augment off --flips off --unfold off --interior " + path(dir / "a.vtk") + " --report " +
                           path(dir / "a.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto report = nlohmann::json::parse(slurp(dir / "a.json"));

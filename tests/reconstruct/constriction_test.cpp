@@ -323,6 +323,7 @@ TEST(Constriction3, ConstrainedConstrictionNeverDeletesKeptFaces) {
   ReconstructionOptions options;
   options.augment = false;
   options.flips.reset();
+  options.unfold = false;  // the kept cells are the interior (§5.8)
   options.constriction.keep.resize(static_cast<Eigen::Index>(keep.size()), 3);
   for (std::size_t k = 0; k < keep.size(); ++k)
     options.constriction.keep.row(static_cast<Eigen::Index>(k)) << keep[k][0], keep[k][1], keep[k][2];
