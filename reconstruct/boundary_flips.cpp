@@ -173,7 +173,8 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
 }  // namespace
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
-                          const Eigen::MatrixXi& keep, double min_gain, const DelaunayComplex<3>* cells) {
+                          const Eigen::MatrixXi& keep, double min_gain, const DelaunayComplex<3>* cells,
+                          std::optional<BoundarySurface>* kept_surface) {
   const bool delaunay = criterion == FlipCriterion::area_then_delaunay;
   const std::vector<std::pair<int, int>> by_area = candidate_edges(points, boundary, FlipCriterion::area, min_gain);
   if (by_area.empty() && (!delaunay || candidate_edges(points, boundary, criterion, min_gain).empty())) return 0;
@@ -198,6 +199,7 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     flips += flip_pass(surface, candidate_edges(points, after, criterion, min_gain), criterion, fixed, min_gain, untested);
   }
   boundary = surface.boundary();
+  if (kept_surface) kept_surface->emplace(std::move(surface));
   return flips;
 }
 

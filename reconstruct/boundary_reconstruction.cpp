@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/mesh_measures.h"
 #include "core/unique_points.h"
+#include "reconstruct/boundary_surface.h"
 
 #include <Eigen/Geometry>
 
@@ -229,18 +230,21 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
     s.carved = a.carved;
     c.all_on_boundary = c.interior_vertices.empty();
   }
+  std::optional<BoundarySurface> surface;  // the flips' spatial index, if they built one, for unfolding
   if (options.flips) {
     const auto start = std::chrono::steady_clock::now();
-    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt);
+    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt, &surface);
     s.flip_seconds = seconds_since(start);
   }
   if (options.unfold) {
     const auto start = std::chrono::steady_clock::now();
-    const UnfoldStatistics u = unfold_boundary(dt.points, out.mesh.faces, options.constriction.keep);
+    const UnfoldStatistics u =
+        surface ? unfold_boundary(*surface, dt.points, out.mesh.faces, options.constriction.keep)
+                : unfold_boundary(dt.points, out.mesh.faces, options.constriction.keep);
     s.folds = u.folds_before;
     s.folds_left = u.folds_after;
     s.unfolded = u.retriangulated;
-    s.flip_seconds += seconds_since(start);
+    s.unfold_seconds = seconds_since(start);
   }
   std::vector<Eigen::Index> kept;
   for (std::size_t k = 0; k < c.kept.size(); ++k)

@@ -75,6 +75,7 @@ struct BoundaryStatistics {
   std::size_t guide_faces = 0;            ///< faces kept by γ-guided constriction
   std::size_t sight_line_cells = 0;       ///< Delaunay cells crossed by the lines of sight
   double flip_seconds = 0.0;
+  double unfold_seconds = 0.0;
   double delaunay_seconds = 0.0;
   double constriction_seconds = 0.0;
 };

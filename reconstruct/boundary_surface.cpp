@@ -53,7 +53,6 @@ void PointTree::build(int node, int begin, int end) {
 
 BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary)
     : P_(P),
-      points_(P),
       faces_grid_(surface_grid(P)),
       faces_at_(static_cast<std::size_t>(P.rows())),
       on_boundary_(static_cast<std::size_t>(P.rows()), 0) {
@@ -143,7 +142,7 @@ bool BoundarySurface::point_in_tetrahedron(int a, int b, int c, int d) const {
   const Kernel::Point_3 &A = exact(a), &B = exact(b), &C = exact(c), &D = exact(d);
   const CGAL::Orientation outside = -CGAL::orientation(A, B, C, D);
   const Eigen::AlignedBox3d region = box({a, b, c, d});
-  return !points_.visit(region, [&](int q, const Eigen::Vector3d&) {
+  return !points().visit(region, [&](int q, const Eigen::Vector3d&) {
     // The box test is only a cheap filter; the exact predicates decide.
     if (q == a || q == b || q == c || q == d) return true;
     const Kernel::Point_3& Q = exact(q);

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -307,7 +308,7 @@ class BoundarySurface {
   /// perhaps a few on its rim), nearest first by tree node; f may return
   /// false to stop early.
   template <typename F>
-  bool points_in_ball(const Eigen::Vector3d& c, double r, F&& f) const { return points_.visit_ball(c, r, f); }
+  bool points_in_ball(const Eigen::Vector3d& c, double r, F&& f) const { return points().visit_ball(c, r, f); }
 
   /// The alive faces.
   Eigen::MatrixX3i boundary() const;
@@ -315,7 +316,13 @@ class BoundarySurface {
  private:
   const Eigen::MatrixX3d& P_;
   std::vector<Kernel::Point_3> cgal_;
-  PointTree points_;
+  // Built on the first point query (unfolding asks none); one surface serves
+  // one thread.
+  const PointTree& points() const {
+    if (!points_) points_.emplace(P_);
+    return *points_;
+  }
+  mutable std::optional<PointTree> points_;
   BoxGrid faces_grid_;
   std::vector<Triangle> faces_;
   std::vector<char> alive_;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <numeric>
 #include <optional>
 #include <queue>
@@ -32,8 +33,8 @@ constexpr double kPi = 3.14159265358979323846;
 // A patch of more faces is not a fold but a region the method cannot judge.
 constexpr std::size_t kMaxPatchFaces = 400;
 constexpr int kGrowths = 2;
-// The largest distance of a patch's points from its plane, over the loop's
-// radius, for it to count as flat. Measured on the 26 closed genus-0 meshes
+// The largest distance of a patch's points from its plane, over the largest
+// from their centroid, for it to count as flat. Measured on the 26 closed genus-0 meshes
 // of CGAL's data: 0.25 keeps every recall within 0.1 points or better (no
 // limit: dino −0.4, couplingdown −2.9), 0.1 undoes a third as many folds.
 constexpr double kFlatness = 0.25;
@@ -46,106 +47,147 @@ bool folded(const Eigen::MatrixX3d& P, double cos_fold, int a, int b, int c, int
   return n1.dot(n2) < cos_fold * n1.norm() * n2.norm();
 }
 
-using EdgeApex = std::map<std::pair<int, int>, int>;  // directed edge → third vertex of its face
+// The directed edges of some faces with the third vertex of each, sorted
+// for lookup (a patch has at most a few thousand).
+class DirectedEdges {
+ public:
+  struct Edge {
+    int from, to, apex;
+    bool operator<(const Edge& o) const { return std::tie(from, to) < std::tie(o.from, o.to); }
+  };
+  explicit DirectedEdges(const std::vector<Triangle>& faces) {
+    for (const Triangle& t : faces)
+      for (std::size_t k = 0; k < 3; ++k) edges_.push_back({t[k], t[(k + 1) % 3], t[(k + 2) % 3]});
+    std::sort(edges_.begin(), edges_.end());
+  }
+  const std::vector<Edge>& all() const { return edges_; }
+  /// The third vertex of the face on from → to; -1 if none.
+  int apex(int from, int to) const {
+    const auto it = std::lower_bound(edges_.begin(), edges_.end(), Edge{from, to, 0});
+    return it != edges_.end() && it->from == from && it->to == to ? it->apex : -1;
+  }
 
-EdgeApex directed_edges(const std::vector<Triangle>& faces) {
-  EdgeApex out;
-  for (const Triangle& t : faces)
-    for (std::size_t k = 0; k < 3; ++k) out[{t[k], t[(k + 1) % 3]}] = t[(k + 2) % 3];
-  return out;
-}
+ private:
+  std::vector<Edge> edges_;
+};
+
+// A patch's plane: through the centroid of its points, normal to its vector
+// area (the sum of its faces', which for a disk is its boundary loop's).
+struct Plane {
+  Eigen::Vector3d origin, normal;
+};
 
 class Unfolder {
  public:
-  Unfolder(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, const Eigen::MatrixXi& keep, double cos_fold)
-      : P_(P), surface_(P, F), cos_fold_(cos_fold) {
+  Unfolder(BoundarySurface& surface, const Eigen::MatrixX3d& P, const Eigen::MatrixXi& keep, double cos_fold)
+      : P_(P), surface_(surface), cos_fold_(cos_fold) {
     for (Eigen::Index k = 0; k < keep.rows(); ++k) fixed_.insert(sorted({keep(k, 0), keep(k, 1), keep(k, 2)}));
   }
 
   bool folded(int a, int b, int c, int d) const { return scanstation::folded(P_, cos_fold_, a, b, c, d); }
 
-  BoundarySurface& surface() { return surface_; }
-
-  /// All alive faces with a vertex in `vertices`.
-  std::vector<int> star(const std::set<int>& vertices) const {
-    std::set<int> faces;
+  /// All alive faces with a vertex in `vertices`, in id order.
+  std::vector<int> star(const std::vector<int>& vertices) const {
+    std::vector<int> faces;
     for (const int v : vertices)
       for (const int f : surface_.faces_at(v))
-        if (surface_.alive(f)) faces.insert(f);
-    return {faces.begin(), faces.end()};
+        if (surface_.alive(f)) faces.push_back(f);
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
   }
 
   /// Replaces the patch by a flat triangulation if that is valid and has
-  /// fewer folds; false if the patch stays.
-  bool retriangulate(const std::vector<int>& patch) {
-    if (patch.size() > kMaxPatchFaces) return false;
-    for (const int f : patch)
-      if (fixed_.count(sorted(surface_.face(f)))) return false;
-    // Directed edges of the patch → third vertex; the loop is the edges whose
-    // reverse is not in the patch.
+  /// fewer folds: how many fewer (the folds change only on the patch's edges
+  /// and its loop's); 0 if the patch stays.
+  std::size_t retriangulate(const std::vector<int>& patch) {
+    if (patch.size() > kMaxPatchFaces) return 0;
     std::vector<Triangle> faces;
-    for (const int f : patch) faces.push_back(surface_.face(f));
-    const EdgeApex inside = directed_edges(faces);
-    std::map<int, int> next;
-    for (const auto& [e, c] : inside)
-      if (!inside.count({e.second, e.first}) && !next.emplace(e.first, e.second).second) return false;  // pinched
-    if (next.size() < 3) return false;
-    std::vector<int> loop{next.begin()->first};
-    while (loop.size() <= next.size()) {
-      const int v = next.at(loop.back());
-      if (v == loop.front()) break;
-      loop.push_back(v);
+    for (const int f : patch) {
+      faces.push_back(surface_.face(f));
+      if (fixed_.count(sorted(faces.back()))) return 0;
     }
-    if (loop.size() != next.size()) return false;  // more than one loop
-    std::set<int> vertices;
-    for (const auto& [e, c] : inside) vertices.insert(e.first);
+    std::vector<int> vertices;
+    for (const Triangle& t : faces) vertices.insert(vertices.end(), t.begin(), t.end());
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    const std::optional<Plane> plane = flat_plane(faces, vertices);
+    if (!plane) return 0;
+    // The loop: the directed edges whose reverse is not in the patch.
+    const DirectedEdges inside(faces);
+    std::vector<std::pair<int, int>> next;  // loop edges by their start
+    for (const auto& e : inside.all())
+      if (inside.apex(e.to, e.from) < 0) next.emplace_back(e.from, e.to);
+    for (std::size_t i = 1; i < next.size(); ++i)
+      if (next[i].first == next[i - 1].first) return 0;  // pinched: the loop passes a vertex twice
+    if (next.size() < 3) return 0;
+    const auto successor = [&](int v) { return std::lower_bound(next.begin(), next.end(), std::pair{v, -1})->second; };
+    std::vector<int> loop{next.front().first};
+    for (int v = successor(loop.back()); v != loop.front() && loop.size() <= next.size(); v = successor(v))
+      loop.push_back(v);
+    if (loop.size() != next.size()) return 0;  // more than one loop
     std::vector<int> inner;
     for (const int v : vertices)
-      if (!next.count(v)) inner.push_back(v);
+      if (!std::binary_search(next.begin(), next.end(), std::pair{v, -1},
+                              [](const auto& x, const auto& y) { return x.first < y.first; }))
+        inner.push_back(v);
     // A disk: V − E + F = 1, with E = (3F + L) / 2.
     const std::ptrdiff_t V = static_cast<std::ptrdiff_t>(vertices.size()), Fc = static_cast<std::ptrdiff_t>(patch.size());
     const std::ptrdiff_t E = (3 * Fc + static_cast<std::ptrdiff_t>(loop.size())) / 2;
-    if (V - E + Fc != 1) return false;
+    if (V - E + Fc != 1) return 0;
 
-    std::optional<std::vector<Triangle>> flat = flat_triangulation(loop, inner);
-    if (!flat || flat->size() != patch.size()) return false;
-    if (folds(directed_edges(*flat), loop) >= folds(inside, loop)) return false;
+    std::optional<std::vector<Triangle>> flat = flat_triangulation(*plane, loop, inner);
+    if (!flat || flat->size() != patch.size()) return 0;
+    const std::size_t before = folds(inside, loop), after = folds(DirectedEdges(*flat), loop);
+    if (after >= before) return 0;
     for (const int f : patch) surface_.remove_face(f);
     if (!valid(*flat, loop)) {
       for (const Triangle& t : faces) surface_.add_face(t);
-      return false;
+      return 0;
     }
     for (const Triangle& t : *flat) surface_.add_face(t);
-    return true;
+    return before - after;
   }
 
  private:
+  // The patch's plane if the patch is nearly flat: every point within
+  // kFlatness of the largest distance from the centroid. Only such a patch
+  // is a fold to undo; elsewhere the surface may turn sharply for real (the
+  // edge of a thin plate).
+  std::optional<Plane> flat_plane(const std::vector<Triangle>& faces, const std::vector<int>& vertices) const {
+    Plane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    for (const int v : vertices) plane.origin += P_.row(v).transpose();
+    plane.origin /= static_cast<double>(vertices.size());
+    for (const Triangle& t : faces) {
+      const Eigen::Vector3d a = P_.row(t[0]).transpose() - plane.origin;
+      plane.normal += a.cross(P_.row(t[1]).transpose() - plane.origin) +
+                      (P_.row(t[1]).transpose() - plane.origin).cross(P_.row(t[2]).transpose() - plane.origin) +
+                      (P_.row(t[2]).transpose() - plane.origin).cross(a);
+    }
+    if (!(plane.normal.norm() > 0)) return std::nullopt;
+    plane.normal.normalize();
+    double radius = 0, height = 0;
+    for (const int v : vertices) {
+      const Eigen::Vector3d p = P_.row(v).transpose() - plane.origin;
+      radius = std::max(radius, p.norm());
+      height = std::max(height, std::abs(p.dot(plane.normal)));
+    }
+    if (height > kFlatness * radius) return std::nullopt;
+    return plane;
+  }
+
   // The constrained Delaunay triangulation of the loop and the inner
-  // vertices projected on the plane of the loop's vector area, its
-  // triangles inside the loop, counter-clockwise seen from the side the
-  // vector area points to (the patch's outside): nullopt when the
-  // projection is not a simple polygon with the inner vertices strictly
-  // inside and apart.
-  std::optional<std::vector<Triangle>> flat_triangulation(const std::vector<int>& loop,
+  // vertices projected on the plane, its triangles inside the loop,
+  // counter-clockwise seen from the side the normal points to (the patch's
+  // outside): nullopt when the projection is not a simple polygon with the
+  // inner vertices strictly inside and apart.
+  std::optional<std::vector<Triangle>> flat_triangulation(const Plane& plane, const std::vector<int>& loop,
                                                           const std::vector<int>& inner) const {
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
-    for (const int i : loop) origin += P_.row(i).transpose();
-    origin /= static_cast<double>(loop.size());
-    for (std::size_t i = 0; i < loop.size(); ++i)
-      area += (P_.row(loop[i]).transpose() - origin).cross(P_.row(loop[(i + 1) % loop.size()]).transpose() - origin);
-    if (!(area.norm() > 0)) return std::nullopt;
-    const Eigen::Vector3d n = area.normalized(), u = n.unitOrthogonal(), v = n.cross(u);
+    const Eigen::Vector3d u = plane.normal.unitOrthogonal(), v = plane.normal.cross(u);
     const auto project = [&](int i) {
-      const Eigen::Vector3d p = P_.row(i).transpose() - origin;
+      const Eigen::Vector3d p = P_.row(i).transpose() - plane.origin;
       return Kernel::Point_2(p.dot(u), p.dot(v));
     };
-    // Only a patch that is nearly flat is a fold to undo; elsewhere the
-    // surface may turn sharply for real (the edge of a thin plate).
-    double radius = 0, height = 0;
-    for (const int i : loop) radius = std::max(radius, (P_.row(i).transpose() - origin).norm());
-    for (const auto& part : {loop, inner})
-      for (const int i : part) height = std::max(height, std::abs((P_.row(i).transpose() - origin).dot(n)));
-    if (height > kFlatness * radius) return std::nullopt;
     std::vector<Kernel::Point_2> polygon;
     for (const int i : loop) polygon.push_back(project(i));
     if (!CGAL::is_simple_2(polygon.begin(), polygon.end(), Kernel()) ||
@@ -188,18 +230,17 @@ class Unfolder {
     return out;
   }
 
-  // Folds among the faces given as directed edge → third vertex, and across
-  // the loop between them and the faces outside.
-  std::size_t folds(const EdgeApex& inside, const std::vector<int>& loop) const {
+  // Folds among the faces and across the loop between them and the faces
+  // outside.
+  std::size_t folds(const DirectedEdges& inside, const std::vector<int>& loop) const {
     std::size_t count = 0;
-    for (const auto& [e, c] : inside)
-      if (e.first < e.second)
-        if (const auto other = inside.find({e.second, e.first}); other != inside.end())
-          count += folded(e.first, e.second, c, other->second);
+    for (const auto& e : inside.all())
+      if (e.from < e.to)
+        if (const int d = inside.apex(e.to, e.from); d >= 0) count += folded(e.from, e.to, e.apex, d);
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const int a = loop[i], b = loop[(i + 1) % loop.size()];
       const auto [outer, d] = surface_.face_with(b, a);
-      if (outer >= 0) count += folded(a, b, inside.at({a, b}), d);
+      if (outer >= 0) count += folded(a, b, inside.apex(a, b), d);
     }
     return count;
   }
@@ -218,7 +259,8 @@ class Unfolder {
         if (chord && surface_.has_edge(a, b)) return false;
       }
     }
-    if (surface_.meets_surface(flat, {})) return false;
+    for (const Triangle& t : flat)  // one by one: each visits only the faces near it
+      if (surface_.meets_surface({t}, {})) return false;
     for (std::size_t i = 0; i < flat.size(); ++i)
       for (std::size_t j = i + 1; j < flat.size(); ++j)
         if (surface_.box({flat[i][0], flat[i][1], flat[i][2]}).intersects(surface_.box({flat[j][0], flat[j][1], flat[j][2]})) &&
@@ -233,61 +275,89 @@ class Unfolder {
   }
 
   const Eigen::MatrixX3d& P_;
-  BoundarySurface surface_;
+  BoundarySurface& surface_;
   double cos_fold_;
   std::set<Triangle> fixed_;
 };
 
-// Union–find over point ids, for grouping the folds.
-int root(std::map<int, int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
+}  // namespace
+
+namespace {
+
+std::vector<std::pair<int, int>> fold_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, double cos_fold) {
+  std::vector<std::pair<int, int>> folds;
+  for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) {
+    if (folded(P, cos_fold, lo, hi, c, d)) folds.emplace_back(lo, hi);
+  });
+  return folds;
+}
+
+UnfoldStatistics unfold(BoundarySurface& surface, const Eigen::MatrixX3d& P, Eigen::MatrixX3i& F,
+                        const Eigen::MatrixXi& keep, double cos_fold, const std::vector<std::pair<int, int>>& folds) {
+  UnfoldStatistics s;
+  s.folds_before = s.folds_after = folds.size();
+  if (folds.empty()) return s;
+  // Groups: fold vertices joined along folds and through shared faces
+  // (union–find over the fold vertices, numbered by their rank).
+  Unfolder unfolder(surface, P, keep, cos_fold);
+  std::vector<int> ends;
+  for (const auto& [a, b] : folds) ends.insert(ends.end(), {a, b});
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  const auto rank = [&](int v) {
+    const auto it = std::lower_bound(ends.begin(), ends.end(), v);
+    return it != ends.end() && *it == v ? static_cast<int>(it - ends.begin()) : -1;
+  };
+  std::vector<int> parent(ends.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i)
+      i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  for (const auto& [a, b] : folds) parent[static_cast<std::size_t>(root(rank(a)))] = root(rank(b));
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    for (const int f : surface.faces_at(ends[i]))
+      for (const int w : surface.face(f))
+        if (const int j = rank(w); j >= 0) parent[static_cast<std::size_t>(root(static_cast<int>(i)))] = root(j);
+  std::vector<std::vector<int>> groups(ends.size());
+  for (std::size_t i = 0; i < ends.size(); ++i) groups[static_cast<std::size_t>(root(static_cast<int>(i)))].push_back(ends[i]);
+
+  for (const std::vector<int>& group : groups) {
+    if (group.empty()) continue;
+    ++s.patches;
+    std::vector<int> around = group;
+    for (int growth = 0; growth <= kGrowths; ++growth) {
+      const std::vector<int> patch = unfolder.star(around);
+      if (const std::size_t undone = unfolder.retriangulate(patch); undone > 0) {
+        ++s.retriangulated;
+        s.folds_after -= undone;
+        break;
+      }
+      for (const int f : patch) around.insert(around.end(), surface.face(f).begin(), surface.face(f).end());
+      std::sort(around.begin(), around.end());
+      around.erase(std::unique(around.begin(), around.end()), around.end());
+    }
+  }
+  if (s.retriangulated > 0) F = surface.boundary();
+  return s;
 }
 
 }  // namespace
 
 UnfoldStatistics unfold_boundary(const Eigen::MatrixX3d& P, Eigen::MatrixX3i& F, const Eigen::MatrixXi& keep,
                                  double fold_degrees) {
-  UnfoldStatistics s;
   const double cos_fold = std::cos(fold_degrees * kPi / 180.0);
-  const auto is_fold = [&](int a, int b, int c, int d) { return folded(P, cos_fold, a, b, c, d); };
-  std::vector<std::pair<int, int>> folds;
-  for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) {
-    if (is_fold(lo, hi, c, d)) folds.emplace_back(lo, hi);
-  });
-  s.folds_before = s.folds_after = folds.size();
-  if (folds.empty()) return s;
+  const std::vector<std::pair<int, int>> folds = fold_edges(P, F, cos_fold);
+  if (folds.empty()) return {};
+  BoundarySurface surface(P, F);
+  return unfold(surface, P, F, keep, cos_fold, folds);
+}
 
-  // Groups: fold vertices joined along folds and through shared faces.
-  Unfolder unfolder(P, F, keep, cos_fold);
-  BoundarySurface& surface = unfolder.surface();
-  std::map<int, int> parent;
-  for (const auto& [a, b] : folds) parent.emplace(a, a), parent.emplace(b, b);
-  for (const auto& [a, b] : folds) parent[root(parent, a)] = root(parent, b);
-  for (const auto& [v, p] : parent)
-    for (const int f : surface.faces_at(v))
-      for (const int w : surface.face(f))
-        if (parent.count(w)) parent[root(parent, v)] = root(parent, w);
-  std::map<int, std::set<int>> groups;
-  for (const auto& [v, p] : parent) groups[root(parent, v)].insert(v);
-
-  for (auto& [id, vertices] : groups) {
-    ++s.patches;
-    std::set<int> around = vertices;
-    for (int growth = 0; growth <= kGrowths; ++growth) {
-      const std::vector<int> patch = unfolder.star(around);
-      if (unfolder.retriangulate(patch)) {
-        ++s.retriangulated;
-        break;
-      }
-      for (const int f : patch)
-        for (const int w : surface.face(f)) around.insert(w);
-    }
-  }
-  F = surface.boundary();
-  s.folds_after = 0;
-  for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) { s.folds_after += is_fold(lo, hi, c, d); });
-  return s;
+UnfoldStatistics unfold_boundary(BoundarySurface& surface, const Eigen::MatrixX3d& P, Eigen::MatrixX3i& F,
+                                 const Eigen::MatrixXi& keep, double fold_degrees) {
+  const double cos_fold = std::cos(fold_degrees * kPi / 180.0);
+  return unfold(surface, P, F, keep, cos_fold, fold_edges(P, F, cos_fold));
 }
 
 }  // namespace scanstation

@@ -16,6 +16,8 @@
 
 namespace scanstation {
 
+class BoundarySurface;
+
 struct UnfoldStatistics {
   std::size_t folds_before = 0;    ///< fold edges found
   std::size_t folds_after = 0;     ///< fold edges left
@@ -42,6 +44,11 @@ struct UnfoldStatistics {
 /// disk on the same vertices); keep #K by 3 faces that must stay (§5.7): a
 /// patch holding one is left as it is.
 UnfoldStatistics unfold_boundary(const Eigen::MatrixX3d& P, Eigen::MatrixX3i& F,
+                                 const Eigen::MatrixXi& keep = Eigen::MatrixXi(0, 3), double fold_degrees = 120.0);
+
+/// The same with the spatial index of F over P already built (the flips',
+/// see flip_boundary), which is changed along with F.
+UnfoldStatistics unfold_boundary(BoundarySurface& surface, const Eigen::MatrixX3d& P, Eigen::MatrixX3i& F,
                                  const Eigen::MatrixXi& keep = Eigen::MatrixXi(0, 3), double fold_degrees = 120.0);
 
 }  // namespace scanstation

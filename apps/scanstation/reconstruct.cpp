@@ -232,6 +232,7 @@ class ReconstructCommand final : public Command {
     context.report.add_seconds("delaunay", s.delaunay_seconds);
     context.report.add_seconds("constriction", s.constriction_seconds);
     if (s.flip_seconds > 0) context.report.add_seconds("flips", s.flip_seconds);
+    if (s.unfold_seconds > 0) context.report.add_seconds("unfold", s.unfold_seconds);
   }
 
   void summarise(const BoundaryStatistics& s, const std::string& shape) const {
