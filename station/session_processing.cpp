@@ -191,6 +191,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
     boundary_report["duplicates_merged"] = st.duplicates_merged;
     boundary_report["enclosed_volume"] = enclosed_volume(mesh.vertices.positions, mesh.faces);
     if (st.sight_line_cells > 0) boundary_report["sight_line_cells"] = st.sight_line_cells;
+    boundary_report["folds"] = {{"found", st.folds}, {"left", st.folds_left}, {"unfolded_patches", st.unfolded}};
     if (live)
       boundary_report["live"] = {{"steps", live->steps()},
                                  {"wider_repairs", live->constriction().wider_repairs()},
