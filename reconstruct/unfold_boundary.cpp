@@ -121,10 +121,15 @@ class Unfolder {
     for (std::size_t i = 1; i < next.size(); ++i)
       if (next[i].first == next[i - 1].first) return 0;  // pinched: the loop passes a vertex twice
     if (next.size() < 3) return 0;
-    const auto successor = [&](int v) { return std::lower_bound(next.begin(), next.end(), std::pair{v, -1})->second; };
+    const auto successor = [&](int v) {
+      const auto it = std::lower_bound(next.begin(), next.end(), std::pair{v, -1});
+      return it != next.end() && it->first == v ? it->second : -1;
+    };
     std::vector<int> loop{next.front().first};
-    for (int v = successor(loop.back()); v != loop.front() && loop.size() <= next.size(); v = successor(v))
+    for (int v = successor(loop.back()); v != loop.front(); v = successor(v)) {
+      if (v < 0 || loop.size() == next.size()) return 0;  // open (the input is no closed manifold)
       loop.push_back(v);
+    }
     if (loop.size() != next.size()) return 0;  // more than one loop
     std::vector<int> inner;
     for (const int v : vertices)

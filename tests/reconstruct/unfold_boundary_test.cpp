@@ -66,6 +66,25 @@ TEST(UnfoldBoundary, UndoesTheFoldsOfAScannedFlatTopAndNothingElse) {
   EXPECT_LT(changed, 40u);
 }
 
+// A surface with a hole at its fold (not closed, against the precondition)
+// is handled without harm: the open patch stays as it is.
+TEST(UnfoldBoundary, LeavesAnOpenPatchAlone) {
+  const TriangleMesh closed =
+      io::read_mesh(std::filesystem::path(SCANSTATION_SOURCE_DIR) / "tests/reconstruct/data/folded_scan.ply");
+  // Face 17 is the thin triangle lying over the others: all its edges fold.
+  const Eigen::Index lid = 17;
+  ASSERT_EQ(closed.faces.row(lid), Eigen::RowVector3i(987, 2077, 2149));
+  Eigen::MatrixX3i F(closed.faces.rows() - 1, 3);
+  Eigen::Index kept = 0;
+  for (Eigen::Index f = 0; f < closed.faces.rows(); ++f)
+    if (f != lid) F.row(kept++) = closed.faces.row(f);
+  const Eigen::MatrixX3i before = F;
+  const UnfoldStatistics s = unfold_boundary(closed.vertices.positions, F);
+  EXPECT_GT(s.folds_before, 0u);  // the folds around the hole are still there
+  EXPECT_EQ(s.retriangulated, 0u);
+  EXPECT_EQ(F, before);
+}
+
 // Real meshes, reconstructed without unfolding, then unfolded on their own.
 TEST(UnfoldBoundary, KeepsRealReconstructionsValidWithFewerFolds) {
   for (const std::string name : {"bull", "cow", "hand"}) {
