@@ -21,6 +21,64 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The schemes compute with coordinates, not only with their differences, so
+// far from the origin the rounding of the coordinates swamps the shape: an
+// ellipsoid of size 1 placed 1e6 units from the origin (a georeferenced
+// scan) came out with 83 macro edges whose Step-5 equations looked dependent
+// and normals 3e-7 rad apart across the others; at 1e9 every edge did. And
+// squared lengths overflow or underflow for coordinates near 1e±160. So the
+// schemes run on the mesh shifted next to the origin and scaled, and the
+// control points are moved back. Both moves are exact for the vertices, so
+// the surface still interpolates them bit for bit: the scale is a power of
+// two, and a coordinate is shifted only when its range lies at least twice
+// its width away from zero, where v − c is exact (Sterbenz's lemma) and
+// hence so is (v − c) + c. Near the origin and at ordinary sizes the frame
+// is the identity and nothing is copied.
+struct LocalFrame {
+  Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+  int exponent = 0;  // local = (global − centre) · 2^−exponent
+  bool identity() const { return exponent == 0 && centre.isZero(); }
+};
+
+LocalFrame local_frame(const Eigen::MatrixX3d& V) {
+  LocalFrame frame;
+  if (V.rows() == 0) return frame;
+  const Eigen::RowVector3d low = V.colwise().minCoeff(), high = V.colwise().maxCoeff();
+  double extent = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double width = high(i) - low(i), middle = low(i) / 2 + high(i) / 2;
+    if (std::isfinite(width) && std::abs(middle) >= 2 * width) frame.centre(i) = middle;
+    extent = std::max(extent, width);
+  }
+  int exponent = 0;
+  if (std::isfinite(extent) && extent > 0) std::frexp(extent, &exponent);
+  if (std::abs(exponent) > 100 && std::abs(exponent) < 1000) frame.exponent = exponent;  // 2^±exponent stays a normal double
+  return frame;
+}
+
+Eigen::MatrixX3d to_local(const Eigen::MatrixX3d& V, const LocalFrame& frame) {
+  return (V.rowwise() - frame.centre) * std::ldexp(1.0, -frame.exponent);
+}
+
+// Back to global coordinates in two steps, each over every control point:
+// the shift at the local scale (it rounds exactly as it would at the global
+// one, the scale being a power of two), then the scale, which is exact.
+// In between the verification sees the surface as it is written out, up to
+// that scale: squared lengths of coordinates near 1e300 would overflow.
+void shift_back(BezierSurface& surface, const LocalFrame& frame) {
+  if (frame.centre.isZero()) return;
+  const Eigen::Vector3d shift = frame.centre.transpose() * std::ldexp(1.0, -frame.exponent);
+  for (CubicTriangle& patch : surface.patches)
+    for (Eigen::Vector3d& b : patch) b += shift;
+}
+
+void scale_back(BezierSurface& surface, const LocalFrame& frame) {
+  if (frame.exponent == 0) return;
+  const double scale = std::ldexp(1.0, frame.exponent);
+  for (CubicTriangle& patch : surface.patches)
+    for (Eigen::Vector3d& b : patch) b *= scale;
+}
+
 }  // namespace
 
 std::string scheme_name(SplitScheme scheme) {
@@ -34,7 +92,9 @@ std::string scheme_name(SplitScheme scheme) {
 
 SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothingOptions& options) {
   if (mesh.face_count() == 0) throw InvalidInput("no triangles; smoothing needs a closed mesh");
-  const Eigen::MatrixX3d& V = mesh.vertices.positions;
+  const LocalFrame frame = local_frame(mesh.vertices.positions);
+  const Eigen::MatrixX3d local = frame.identity() ? Eigen::MatrixX3d() : to_local(mesh.vertices.positions, frame);
+  const Eigen::MatrixX3d& V = frame.identity() ? mesh.vertices.positions : local;
   SurfaceSmoothing result;
   auto start = std::chrono::steady_clock::now();
   Eigen::MatrixX3d N;
@@ -90,8 +150,10 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   result.patches_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
+  result.oscillation = oscillation(result.surface, V, mesh.faces);  // relative to edge lengths: the same in either frame
+  shift_back(result.surface, frame);
   result.g1 = verify_g1(result.surface);
-  result.oscillation = oscillation(result.surface, V, mesh.faces);
+  scale_back(result.surface, frame);
   result.verification_seconds = seconds_since(start);
   return result;
 }

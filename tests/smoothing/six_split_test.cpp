@@ -4,6 +4,7 @@
 #include "smoothing/cross_edge_directions.h"
 #include "smoothing/g1_verification.h"
 #include "smoothing/oscillation.h"
+#include "smoothing/patch_adjacency.h"
 #include "smoothing/sign_condition.h"
 #include "smoothing/surface_smoothing.h"
 #include "smoothing/tessellation.h"
@@ -149,6 +150,41 @@ TEST(SixSplit, CubeCornersGetNormalsThatKeepTheCrossEdgePointsApart) {
   EXPECT_EQ(after.dependent_edges.size(), 0u);
   EXPECT_LT(verify_g1(after).max_normal_angle, 1e-8);
   EXPECT_EQ(smooth_surface(cube).adjusted_vertices, adjusted);  // the command does the same
+}
+
+
+// A scan in georeferenced coordinates lies far from the origin: the command
+// smooths it as if it lay at the origin (the same decisions, the same
+// control points moved, up to the rounding of the far coordinates) and still
+// interpolates every vertex bit for bit. Without the local frame a tenth of
+// an ellipsoid's edges at 1e6 units looked dependent, and all at 1e9.
+TEST(SurfaceSmoothing, FarFromTheOriginIsTheSurfaceAtTheOriginMoved) {
+  const TriangleMesh mesh = test::bumpy_sphere(3, 0.1);
+  for (const double offset : {1e6, 1e9}) {
+    const Eigen::RowVector3d shift(offset, -2 * offset, 0.5 * offset);
+    TriangleMesh far = mesh;
+    far.vertices.positions = mesh.vertices.positions.rowwise() + shift;
+    // The same rounded points at the origin (the subtraction is exact).
+    TriangleMesh at_origin = far;
+    at_origin.vertices.positions = far.vertices.positions.rowwise() - shift;
+    const SurfaceSmoothing near = smooth_surface(at_origin);
+    const SurfaceSmoothing s = smooth_surface(far);
+    EXPECT_EQ(s.surface.dependent_edges, near.surface.dependent_edges) << offset;
+    EXPECT_EQ(s.adjusted_vertices, near.adjusted_vertices) << offset;
+    ASSERT_EQ(s.surface.patches.size(), near.surface.patches.size());
+    double largest = 0;
+    std::size_t vertex_corners = 0;
+    for (std::size_t p = 0; p < s.surface.patches.size(); ++p) {
+      for (int k = 0; k < 10; ++k)
+        largest = std::max(largest, (s.surface.patches[p][k] - shift.transpose() - near.surface.patches[p][k]).norm());
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+          vertex_corners += patch_corner(s.surface.patches[p], k) ==
+                            Eigen::Vector3d(far.vertices.positions.row(far.faces(s.surface.macro[p], c)));
+    }
+    EXPECT_LT(largest, 16 * offset * std::numeric_limits<double>::epsilon()) << offset;
+    EXPECT_EQ(vertex_corners, 6u * static_cast<std::size_t>(mesh.face_count())) << offset;
+  }
 }
 
 }  // namespace
