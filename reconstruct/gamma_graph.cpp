@@ -194,16 +194,19 @@ std::optional<Eigen::Vector2d> largest_empty(const Profile& pr) {
   return Eigen::Vector2d(std::max(a, b), std::min(a, b));
 }
 
-// Definition 3.1 on the profile: t1 = c1, t0 = -c0 or the mirror image.
-bool neighborhood_empty(const Profile& pr, double c0, double c1) {
+// Definition 3.1 on the profile for the balls of parameters t0, t1 of the
+// pencil: their union when c1 ≥ 0, else their intersection.
+bool balls_empty(const Profile& pr, double t0, double t1, bool intersection) {
   if (pr.blocked) return false;
-  const auto empty = [&](double t0, double t1) {
-    const double lo = std::min(t0, t1), hi = std::max(t0, t1);
-    const bool half0 = std::abs(t0) == 1, half1 = std::abs(t1) == 1;
-    if (c1 >= 0) return !(pr.disc && !(half0 && half1)) && pr.lo <= lo && hi <= pr.hi;  // B0 ∪ B1
-    return !(pr.disc && !half0 && !half1) && lo <= pr.hi && pr.lo <= hi;               // B0 ∩ B1
-  };
-  return empty(-c0, c1) || empty(c0, -c1);
+  const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+  const bool half0 = std::abs(t0) == 1, half1 = std::abs(t1) == 1;
+  if (!intersection) return !(pr.disc && !(half0 && half1)) && pr.lo <= lo && hi <= pr.hi;  // B0 ∪ B1
+  return !(pr.disc && !half0 && !half1) && lo <= pr.hi && pr.lo <= hi;                      // B0 ∩ B1
+}
+
+// Definition 3.1: t1 = c1, t0 = -c0 or the mirror image.
+bool neighborhood_empty(const Profile& pr, double c0, double c1) {
+  return balls_empty(pr, -c0, c1, c1 < 0) || balls_empty(pr, c0, -c1, c1 < 0);
 }
 
 // ---------------------------------------------------------------------------
@@ -473,7 +476,8 @@ class KdTree {
     lo_ = hi_ = P.empty() ? Vec::Zero() : P[0];
     for (const Vec& p : P) lo_ = lo_.cwiseMin(p), hi_ = hi_.cwiseMax(p);
   }
-  // Calls visit(i) for (at least) every point lying in all `balls`; stops
+  // Calls visit(i) for every point lying in all `balls` and slabs (up to a
+  // relative slack of 1e-9, so a few just outside may come too); stops
   // when visit returns false. Returns false if stopped.
   template <typename Visit>
   bool visit(const Region<D>& region, Visit&& visit) const {
@@ -502,17 +506,21 @@ class KdTree {
     }
     return true;
   }
+  // A point as a box of no size: the same slack, so no point the exact
+  // tests would count is skipped, and the far ones in a visited leaf do not
+  // pay for them (on surface samples most of a leaf lies outside a lens).
+  static bool meets(const Vec& p, const Region<D>& region) { return meets(p, p, region); }
   template <typename Visit>
   bool walk(int lo, int hi, int depth, const Vec& blo, const Vec& bhi, const Region<D>& balls,
             Visit& visit) const {
     if (!meets(blo, bhi, balls)) return true;
     if (hi - lo <= 8) {
       for (int k = lo; k < hi; ++k)
-        if (!visit(order_[k])) return false;
+        if (meets(P_[order_[k]], balls) && !visit(order_[k])) return false;
       return true;
     }
     const int axis = depth % D, mid = (lo + hi) / 2, m = order_[mid];
-    if (!visit(m)) return false;
+    if (meets(P_[m], balls) && !visit(m)) return false;
     Vec left_hi = bhi, right_lo = blo;
     left_hi[axis] = right_lo[axis] = P_[m][axis];
     const bool left_first = balls.seed[axis] < P_[m][axis];
@@ -667,6 +675,60 @@ Eigen::Matrix<int, Eigen::Dynamic, D> to_matrix(const Input<D>& in, std::vector<
   return M;
 }
 
+// γ(c0,c1) with -1 < c1 < 0 for a simplex with no empty ball (Definition
+// 3.1 directly): it belongs when one of its two neighbourhoods B(t0) ∩ B(t1)
+// holds no vertex. Each is one k-d query that stops at the first vertex
+// inside; only the vertices the query meets are tested (exactly, as a
+// profile of one vertex). Unlike lens_profile, no search for the profile's
+// lo and hi: that is what Definition 3.3's values need, not a fixed graph.
+template <int D>
+bool lens_neighborhood_empty(const Input<D>& in, const KdTree<D>& tree, const std::type_identity_t<Index<D>>& s,
+                             double c0, double c1) {
+  const Pencil<D> pencil(positions(in, s));
+  if (!GammaTraits<D>::is_simplex(pencil.s)) return false;
+  const auto own = [&](int i) { return std::find(s.begin(), s.end(), i) != s.end(); };
+  const auto ball_at = [&](double t) {
+    const double R = pencil.r / (1.0 - std::abs(t));
+    const double off = std::sqrt(std::max(0.0, R * R - pencil.r * pencil.r));
+    return Ball<D>{pencil.m + (t < 0 ? -off : off) * pencil.n, R};
+  };
+  for (const auto& [t0, t1] : {std::pair{-c0, c1}, std::pair{c0, -c1}}) {
+    const Region<D> region{{ball_at(t0), ball_at(t1)}, {}, pencil.m};
+    const bool empty = tree.visit(region, [&](int i) {
+      if (own(i)) return true;
+      Profile one;
+      pencil.add(one, i, in.P[i]);
+      return balls_empty(one, t0, t1, true);
+    });
+    if (empty) return true;
+  }
+  return false;
+}
+
+// γ(c0,c1) with -1 < c1 < 0: the simplices with an empty ball from their
+// profiles (Theorem 3.2), every other candidate by lens_neighborhood_empty.
+template <int D>
+std::vector<Index<D>> negative_graph(const Input<D>& in, double c0, double c1) {
+  std::vector<Index<D>> rows;
+  if (static_cast<int>(in.P.size()) < D) return rows;
+  std::vector<Index<D>> with_ball;
+  for (const auto& c : empty_ball_simplices(in)) {
+    if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);
+    Index<D> key = c.s;
+    std::sort(key.begin(), key.end());
+    with_ball.push_back(key);
+  }
+  std::sort(with_ball.begin(), with_ball.end());
+  const KdTree<D> tree(in.P);
+  for (const Index<D>& s : screened_pairs_or_triples(in, c1)) {
+    Index<D> key = s;
+    std::sort(key.begin(), key.end());
+    if (std::binary_search(with_ball.begin(), with_ball.end(), key)) continue;
+    if (lens_neighborhood_empty<D>(in, tree, s, c0, c1)) rows.push_back(s);
+  }
+  return rows;
+}
+
 template <int D>
 Eigen::Matrix<int, Eigen::Dynamic, D> fixed_graph(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, double c0,
                                                    double c1) {
@@ -676,6 +738,7 @@ Eigen::Matrix<int, Eigen::Dynamic, D> fixed_graph(const Eigen::Matrix<double, Ei
     throw InvalidInput("gamma graph: γ(c0,c1) needs |c0| ≤ |c1| (Definition 3.1), got c0 = " + std::to_string(c0) +
                        ", c1 = " + std::to_string(c1));
   const Input<D> in = prepare<D>(V);
+  if (c1 < 0 && c1 > -1) return to_matrix(in, negative_graph(in, c0, c1));
   std::vector<Index<D>> rows;
   for (const auto& c : candidates(in, std::min(c1, 0.0)))
     if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);

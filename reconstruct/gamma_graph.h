@@ -91,11 +91,19 @@ Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range)
 /// O(N^k · m) with m the vertices in that ball: at floor = -1 the lens is the
 /// open simplex and this degrades to the O(N^{k+1}) brute force, whose
 /// output is then Θ(N^k) anyway.
-/// Measured (one core, γ(0,-0.5)): 2D uniform N=2000 0.34 s vs 22 s brute
-/// force; 2D noisy circle N=2000 (68k edges) 14 s vs 24 s. 3D has no screen
-/// yet: uniform N=120 0.29 s vs 0.34 s, noisy sphere N=120 (102k triangles)
-/// 4.7 s vs 1.0 s — on surface samples the 3D path is slower than the brute
-/// force (each output triangle pays a full profile search near the sphere).
+/// The fixed form γ(c0,c1) with -1 < c1 < 0 needs no profile of a lens
+/// simplex: one k-d query per orientation of N_γ(c0,c1), stopping at the
+/// first vertex inside, decides it (and the k-d walk tests only the points
+/// inside the query region exactly). Measured with bench/gamma_bench (one
+/// core, γ(0,-0.5), against the tests' brute force in the same run): 2D
+/// uniform N = 500, 1000, 2000: 23, 70, 210 ms vs 0.22, 1.5, 10.5 s; 2D
+/// circle with 1% noise: 57, 202, 654 ms vs 0.27, 1.7, 12.0 s; 3D uniform
+/// N = 60, 120, 240: 12, 82, 685 ms vs 20, 214, 2439 ms; 3D sphere with 1%
+/// noise (most triangles in the graph: 270k at N = 240): 20, 223, 1730 ms
+/// vs 34, 459, 5137 ms. Before, every lens simplex's whole profile was
+/// searched and every point of a visited k-d leaf tested exactly: the noisy
+/// sphere took 217 ms, 2.7 s, 28.6 s, up to 5.6× the brute force. 3D still
+/// enumerates every triple (no screen like 2D's Yao cones).
 void gamma_values(const Eigen::MatrixX2d& V, double floor, Eigen::MatrixX2i& S, Eigen::MatrixX2d& C);
 void gamma_values(const Eigen::MatrixX3d& V, double floor, Eigen::MatrixX3i& S, Eigen::MatrixX2d& C);
 

@@ -77,6 +77,34 @@ void expect_fixed_matches_brute(int n, unsigned seeds) {
 TEST(GammaGraph, FixedParameters2DMatchBruteForce) { expect_fixed_matches_brute<2>(18, 25); }
 TEST(GammaGraph, FixedParameters3DMatchBruteForce) { expect_fixed_matches_brute<3>(13, 8); }
 
+// Negative parameters take the direct lens queries (not the profiles) in
+// the fixed form: on the surface samples a scan gives (a noisy sphere, where
+// most triangles have an empty lens) and on a lattice full of co-spherical
+// and coplanar points, they agree with the brute force.
+TEST(GammaGraph, NegativeParametersOnSurfaceSamplesAndALatticeMatchBruteForce) {
+  std::vector<Eigen::MatrixX3d> inputs;
+  for (unsigned seed = 0; seed < 3; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0.0, 1.0);
+    Eigen::MatrixX3d V(22, 3);
+    for (Eigen::Index i = 0; i < V.rows(); ++i) {
+      const Eigen::Vector3d p(g(rng), g(rng), g(rng));
+      V.row(i) = (p.normalized() * (1.0 + 0.01 * g(rng))).transpose();
+    }
+    inputs.push_back(V);
+  }
+  Eigen::MatrixX3d lattice(18, 3);
+  for (int i = 0; i < 18; ++i) lattice.row(i) << i % 3, (i / 3) % 3, i / 9;
+  inputs.push_back(lattice);
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    for (double c1 : {-0.83, -0.5, -0.21})
+      for (double c0 : {-0.21, 0.0, 0.17, -c1}) {
+        if (std::abs(c0) > std::abs(c1)) continue;
+        ASSERT_EQ(fast<3>(inputs[k], c0, c1), test::brute_gamma<3>(inputs[k], c0, c1))
+            << "input " << k << " c0 " << c0 << " c1 " << c1;
+      }
+}
+
 // Definition 3.3: every simplex's (c'0, c'1) and the range graphs.
 template <int D>
 void expect_values_match_brute(int n, unsigned seeds) {
