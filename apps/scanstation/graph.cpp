@@ -3,11 +3,13 @@
 #include "command.h"
 #include "core/bounding_box.h"
 #include "core/errors.h"
+#include "core/io/edge_graph.h"
 #include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
 #include "core/svg_canvas.h"
 #include "reconstruct/gamma_graph.h"
 #include "reconstruct/geometric_graphs.h"
+#include "reconstruct/geometric_graphs_3d.h"
 
 #include <cstdio>
 #include <functional>
@@ -42,6 +44,24 @@ Eigen::MatrixX2i named_graph(const std::string& type, const Eigen::MatrixX2d& V,
   return it->second();
 }
 
+// The edge graphs of Ch. 2 in space; hull and delaunay stay triangle sets
+// (γ(-1,1) and γ([-1,1],[0,1])), the α-shapes and β-skeletons planar.
+Eigen::MatrixX2i named_edge_graph_3d(const std::string& type, const Eigen::MatrixX3d& V) {
+  const std::map<std::string, std::function<Eigen::MatrixX2i()>> graphs = {
+      {"cp", [&] { return closest_pairs(V); }},
+      {"nng", [&] { return nearest_neighbor_graph(V); }},
+      {"emst", [&] { return euclidean_minimum_spanning_tree(V); }},
+      {"rng", [&] { return relative_neighborhood_graph(V); }},
+      {"gabriel", [&] { return gabriel_graph(V); }},
+  };
+  const auto it = graphs.find(type);
+  if (it == graphs.end())
+    throw InvalidInput("--type " + type +
+                       " is a 2D graph; in 3D use cp, nng, emst, rng, gabriel (edges), hull, delaunay (triangles), "
+                       "--gamma or --gamma-range");
+  return it->second();
+}
+
 nlohmann::json graph_json(const Eigen::MatrixXi& S, int dimension) {
   nlohmann::json simplices = nlohmann::json::array();
   for (Eigen::Index r = 0; r < S.rows(); ++r) {
@@ -66,7 +86,7 @@ class GraphCommand final : public Command {
                       ->expected(4)
                       ->delimiter(',');
     auto* type = cli_->add_option("--type", type_,
-                                  "2D: cp, nng, emst, rng, gabriel, hull, delaunay, alpha, beta-lune, beta-circle");
+                                  "cp, nng, emst, rng, gabriel, hull, delaunay; 2D also alpha, beta-lune, beta-circle");
     cli_->add_option("--param", param_, "α for alpha, β for beta-lune / beta-circle");
     cli_->add_option("--format", format_, "Input format, when the extension does not tell");
     gamma->excludes(range)->excludes(type);
@@ -99,9 +119,21 @@ class GraphCommand final : public Command {
       }
       report(context, E.rows(), "edges");
     } else {
-      if (type_ && *type_ != "delaunay" && *type_ != "hull")
-        throw InvalidInput("--type " + *type_ + " is a 2D graph; in 3D use delaunay, hull, --gamma or --gamma-range");
       const Eigen::MatrixX3d& V = cloud.positions;
+      if (type_ && *type_ != "delaunay" && *type_ != "hull") {
+        const Eigen::MatrixX2i E = named_edge_graph_3d(*type_, V);
+        timer.stop();
+        const std::optional<io::FileFormat> format = io::format_from_extension(output_);
+        if (!json && format != io::FileFormat::obj && format != io::FileFormat::ply)
+          throw InvalidInput(output_.string() + ": a 3D edge graph is written as .ply, .obj or .json");
+        io::write_file_atomically(output_,
+                                  json ? graph_json(E, 3).dump() + "\n"
+                                  : format == io::FileFormat::obj ? io::write_edges_obj(V, E)
+                                                                  : io::write_edges_ply(V, E),
+                                  context.overwrite);
+        report(context, E.rows(), "edges");
+        return;
+      }
       const Eigen::MatrixX3i T = type_ ? (*type_ == "hull" ? gamma_graph(V, -1.0, 1.0) : gamma_graph(V, GammaRange{}))
                                  : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])
                                                    : gamma_graph(V, GammaRange{range_[0], range_[1], range_[2], range_[3]});

@@ -315,6 +315,24 @@ TEST(Cli, GraphsIn2DAnd3D) {
                   " --type hull --report " + path(dir / "c.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GT(nlohmann::json::parse(slurp(dir / "c.json"))["result"]["simplices"].get<int>(), 4);
+  // Edge graphs in space: the cactus' 620 vertices joined by 619 tree edges,
+  // as OBJ line records and as a PLY edge element.
+  const std::string cactus = path(test::cgal_data("meshes/cactus.off"));
+  r = scanstation("graph " + cactus + " -o " + path(dir / "t.obj") + " --type emst");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string obj = slurp(dir / "t.obj");
+  std::size_t lines = 0;
+  for (std::size_t at = obj.find("\nl "); at != std::string::npos; at = obj.find("\nl ", at + 1)) ++lines;
+  EXPECT_EQ(lines, 619u);
+  r = scanstation("graph " + cactus + " -o " + path(dir / "r.ply") + " --type rng");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(slurp(dir / "r.ply"), testing::HasSubstr("element edge "));
+  r = scanstation("graph " + cactus + " -o " + path(dir / "r.off") + " --type rng");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr(".ply, .obj or .json"));
+  r = scanstation("graph " + cactus + " -o " + path(dir / "a.ply") + " --type alpha --param 1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("is a 2D graph"));
 }
 
 TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
