@@ -1,9 +1,16 @@
-// The 2D geometric graphs of Veltkamp's chapter 2, built from one Delaunay
+// The geometric graphs of Veltkamp's chapter 2, built from one Delaunay
 // triangulation where the theory allows (all are subgraphs of DT except the
-// β-skeletons with b < 0), so that CP ⊆ NNG ⊆ EMST ⊆ RNG ⊆ GG ⊆ DT.
+// β-skeletons with b < 0), so that CP ⊆ NNG ⊆ EMST ⊆ RNG ⊆ GG ⊆ DT. The
+// edge graphs CP, NNG, EMST, RNG and GG also in space (3D overloads, in
+// geometric_graphs_3d.cpp): from CGAL's tetrahedralization, plus the chords
+// it chose between where points are co-spherical (both diagonals of a
+// lattice square are Gabriel, one is a tetrahedralization edge); RNG lunes
+// by a k-d tree range search. Input with no tetrahedralization (all points
+// in one plane, or fewer than four) takes every pair as a candidate up to
+// 300 points and throws InvalidInput beyond (give those as 2D points).
 //
 // Every function takes
-//   V  #V by 2 positions
+//   V  #V by 2 (or 3) positions
 // and returns
 //   E  #E by 2 edges, i < j, rows sorted lexicographically.
 // Duplicate positions are merged: the first occurrence takes part, later
@@ -27,23 +34,29 @@ Eigen::MatrixX2i convex_hull_edges(const Eigen::MatrixX2d& V);
 /// Definition 2.9: no vertex strictly inside the circle with diameter ij.
 /// Includes crossing diameters of an empty circle in degenerate input.
 Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX2d& V);
+Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX3d& V);
 
 /// Definition 2.8: no vertex k with max(|ik|, |jk|) < |ij| (exact distance
-/// comparisons). Gabriel edges screened in O(N) each: O(N²) worst case.
+/// comparisons). Gabriel edges screened in O(N) each: O(N²) worst case
+/// (3D: by a k-d tree query of the ball of radius |ij| around i).
 Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V);
+Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX3d& V);
 
-/// Definition 2.5: Kruskal on the Delaunay edges; lengths compared exactly,
-/// ties broken by (i, j) so the tree is deterministic. A forest never occurs
-/// (the Delaunay graph is connected).
+/// Definition 2.5: Kruskal on the Delaunay edges (3D: the Gabriel edges);
+/// lengths compared exactly, ties broken by (i, j) so the tree is
+/// deterministic. A forest never occurs (the Delaunay graph is connected).
 Eigen::MatrixX2i euclidean_minimum_spanning_tree(const Eigen::MatrixX2d& V);
+Eigen::MatrixX2i euclidean_minimum_spanning_tree(const Eigen::MatrixX3d& V);
 
 /// Definition 2.4: each vertex joined to one nearest vertex, the one with the
 /// smallest index among equally near ones (consistent with the EMST order, so
 /// NNG ⊆ EMST always holds).
 Eigen::MatrixX2i nearest_neighbor_graph(const Eigen::MatrixX2d& V);
+Eigen::MatrixX2i nearest_neighbor_graph(const Eigen::MatrixX3d& V);
 
 /// Definition 2.3: every pair at the minimum distance.
 Eigen::MatrixX2i closest_pairs(const Eigen::MatrixX2d& V);
+Eigen::MatrixX2i closest_pairs(const Eigen::MatrixX3d& V);
 
 /// Definitions 2.12–2.14, the α(a)-shape. a < 0: edges ij with an empty open
 /// disc of radius 1/|a| touching i and j (the closest-point α-shape, a

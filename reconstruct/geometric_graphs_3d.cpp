@@ -1,4 +1,4 @@
-#include "reconstruct/geometric_graphs_3d.h"
+#include "reconstruct/geometric_graphs.h"
 
 #include "core/errors.h"
 #include "core/unique_points.h"

@@ -9,7 +9,6 @@
 #include "core/svg_canvas.h"
 #include "reconstruct/gamma_graph.h"
 #include "reconstruct/geometric_graphs.h"
-#include "reconstruct/geometric_graphs_3d.h"
 
 #include <cstdio>
 #include <functional>
@@ -20,23 +19,29 @@ namespace scanstation::app {
 
 namespace {
 
+using NamedGraphs = std::map<std::string, std::function<Eigen::MatrixX2i()>>;
+
+// The edge graphs of Ch. 2 that exist in the plane and in space.
+template <typename Points>
+NamedGraphs edge_graphs(const Points& V) {
+  return {{"cp", [&] { return closest_pairs(V); }},
+          {"nng", [&] { return nearest_neighbor_graph(V); }},
+          {"emst", [&] { return euclidean_minimum_spanning_tree(V); }},
+          {"rng", [&] { return relative_neighborhood_graph(V); }},
+          {"gabriel", [&] { return gabriel_graph(V); }}};
+}
+
 Eigen::MatrixX2i named_graph(const std::string& type, const Eigen::MatrixX2d& V, std::optional<double> param) {
   const auto need = [&](const char* what) {
     if (!param) throw InvalidInput("--type " + type + " needs --param (" + what + ")");
     return *param;
   };
-  const std::map<std::string, std::function<Eigen::MatrixX2i()>> graphs = {
-      {"cp", [&] { return closest_pairs(V); }},
-      {"nng", [&] { return nearest_neighbor_graph(V); }},
-      {"emst", [&] { return euclidean_minimum_spanning_tree(V); }},
-      {"rng", [&] { return relative_neighborhood_graph(V); }},
-      {"gabriel", [&] { return gabriel_graph(V); }},
-      {"hull", [&] { return convex_hull_edges(V); }},
-      {"delaunay", [&] { return delaunay_edges(V); }},
-      {"alpha", [&] { return alpha_shape_edges(V, need("α")); }},
-      {"beta-lune", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::lune); }},
-      {"beta-circle", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::circle); }},
-  };
+  NamedGraphs graphs = edge_graphs(V);
+  graphs.insert({{"hull", [&] { return convex_hull_edges(V); }},
+                 {"delaunay", [&] { return delaunay_edges(V); }},
+                 {"alpha", [&] { return alpha_shape_edges(V, need("α")); }},
+                 {"beta-lune", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::lune); }},
+                 {"beta-circle", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::circle); }}});
   const auto it = graphs.find(type);
   if (it == graphs.end())
     throw InvalidInput("--type: expected cp, nng, emst, rng, gabriel, hull, delaunay, alpha, beta-lune or beta-circle; "
@@ -44,16 +49,10 @@ Eigen::MatrixX2i named_graph(const std::string& type, const Eigen::MatrixX2d& V,
   return it->second();
 }
 
-// The edge graphs of Ch. 2 in space; hull and delaunay stay triangle sets
-// (γ(-1,1) and γ([-1,1],[0,1])), the α-shapes and β-skeletons planar.
+// In space hull and delaunay stay triangle sets (γ(-1,1) and
+// γ([-1,1],[0,1])); the α-shapes and β-skeletons are planar.
 Eigen::MatrixX2i named_edge_graph_3d(const std::string& type, const Eigen::MatrixX3d& V) {
-  const std::map<std::string, std::function<Eigen::MatrixX2i()>> graphs = {
-      {"cp", [&] { return closest_pairs(V); }},
-      {"nng", [&] { return nearest_neighbor_graph(V); }},
-      {"emst", [&] { return euclidean_minimum_spanning_tree(V); }},
-      {"rng", [&] { return relative_neighborhood_graph(V); }},
-      {"gabriel", [&] { return gabriel_graph(V); }},
-  };
+  const NamedGraphs graphs = edge_graphs(V);
   const auto it = graphs.find(type);
   if (it == graphs.end())
     throw InvalidInput("--type " + type +

@@ -1,7 +1,7 @@
 // Chapter-2 edge graphs in space: against their definitions by brute force
 // (every pair, every other point, exact predicates) on random, lattice,
 // co-spherical, duplicated and coplanar points, and the inclusion chain.
-#include "reconstruct/geometric_graphs_3d.h"
+#include "reconstruct/geometric_graphs.h"
 
 #include <gtest/gtest.h>
 
