@@ -2,11 +2,17 @@
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Fuzzy_sphere.h>
+#include <CGAL/Kd_tree.h>
+#include <CGAL/Search_traits_2.h>
+#include <CGAL/Search_traits_adapter.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <numeric>
 #include <string>
@@ -98,11 +104,22 @@ Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX2d& V) {
 Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V) {
   const Delaunay d = delaunay(V);
   const Eigen::MatrixX2i G = gabriel_graph(V);  // RNG ⊆ GG
+  using Traits = CGAL::Search_traits_adapter<int, CGAL::Pointer_property_map<K::Point_2>::const_type,
+                                             CGAL::Search_traits_2<K>>;
+  using Tree = CGAL::Kd_tree<Traits>;
+  const Traits traits(CGAL::make_property_map(d.P));
+  Tree tree(d.rows.begin(), d.rows.end(), Tree::Splitter(), traits);  // first occurrences only
   const auto cmp = K().compare_distance_2_object();
   std::vector<Edge> out;
+  std::vector<int> near;
   for (Eigen::Index e = 0; e < G.rows(); ++e) {
     const K::Point_2 &a = d.P[G(e, 0)], &b = d.P[G(e, 1)];
-    const bool empty = std::none_of(d.rows.begin(), d.rows.end(), [&](int k) {
+    // Every k in the lune has |ak| < |ab|: the disc around a, a little wider
+    // than |ab| so that rounding loses none; then the exact test.
+    near.clear();
+    tree.search(std::back_inserter(near),
+                CGAL::Fuzzy_sphere<Traits>(G(e, 0), std::sqrt(CGAL::squared_distance(a, b)) * (1 + 1e-9), 0.0, traits));
+    const bool empty = std::none_of(near.begin(), near.end(), [&](int k) {
       return cmp(a, d.P[k], a, b) == CGAL::SMALLER && cmp(b, d.P[k], b, a) == CGAL::SMALLER;
     });
     if (empty) out.push_back({G(e, 0), G(e, 1)});

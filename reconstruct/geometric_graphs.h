@@ -37,8 +37,8 @@ Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX2d& V);
 Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX3d& V);
 
 /// Definition 2.8: no vertex k with max(|ik|, |jk|) < |ij| (exact distance
-/// comparisons). Gabriel edges screened in O(N) each: O(N²) worst case
-/// (3D: by a k-d tree query of the ball of radius |ij| around i).
+/// comparisons). Gabriel edges screened by a k-d tree query of the disc
+/// (3D: ball) of radius |ij| around i, then the exact test on what it finds.
 Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V);
 Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX3d& V);
 
