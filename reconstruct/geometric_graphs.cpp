@@ -82,6 +82,28 @@ struct ShorterEdge {
 
 int find(std::vector<int>& parent, int x) { return parent[x] == x ? x : parent[x] = find(parent, parent[x]); }
 
+// The distinct points within a disc, from a k-d tree over them: a disc a
+// little wider than asked, so that rounding loses none; callers then decide
+// exactly (or by their own test) on what it returns.
+class PointsNear {
+ public:
+  explicit PointsNear(const Delaunay& d)
+      : traits_(CGAL::make_property_map(d.P)), tree_(d.rows.begin(), d.rows.end(), Tree::Splitter(), traits_) {}
+  const std::vector<int>& operator()(const K::Point_2& centre, double radius) {
+    found_.clear();
+    tree_.search(std::back_inserter(found_), CGAL::Fuzzy_sphere<Traits>(centre, radius * (1 + 1e-9), 0.0, traits_));
+    return found_;
+  }
+
+ private:
+  using Traits = CGAL::Search_traits_adapter<int, CGAL::Pointer_property_map<K::Point_2>::const_type,
+                                             CGAL::Search_traits_2<K>>;
+  using Tree = CGAL::Kd_tree<Traits>;
+  Traits traits_;
+  Tree tree_;
+  std::vector<int> found_;
+};
+
 }  // namespace
 
 Eigen::MatrixX2i delaunay_edges(const Eigen::MatrixX2d& V) { return to_matrix(delaunay(V).edges); }
@@ -104,21 +126,12 @@ Eigen::MatrixX2i gabriel_graph(const Eigen::MatrixX2d& V) {
 Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V) {
   const Delaunay d = delaunay(V);
   const Eigen::MatrixX2i G = gabriel_graph(V);  // RNG ⊆ GG
-  using Traits = CGAL::Search_traits_adapter<int, CGAL::Pointer_property_map<K::Point_2>::const_type,
-                                             CGAL::Search_traits_2<K>>;
-  using Tree = CGAL::Kd_tree<Traits>;
-  const Traits traits(CGAL::make_property_map(d.P));
-  Tree tree(d.rows.begin(), d.rows.end(), Tree::Splitter(), traits);  // first occurrences only
+  PointsNear points_near(d);
   const auto cmp = K().compare_distance_2_object();
   std::vector<Edge> out;
-  std::vector<int> near;
   for (Eigen::Index e = 0; e < G.rows(); ++e) {
     const K::Point_2 &a = d.P[G(e, 0)], &b = d.P[G(e, 1)];
-    // Every k in the lune has |ak| < |ab|: the disc around a, a little wider
-    // than |ab| so that rounding loses none; then the exact test.
-    near.clear();
-    tree.search(std::back_inserter(near),
-                CGAL::Fuzzy_sphere<Traits>(G(e, 0), std::sqrt(CGAL::squared_distance(a, b)) * (1 + 1e-9), 0.0, traits));
+    const std::vector<int>& near = points_near(a, std::sqrt(CGAL::squared_distance(a, b)));  // the lune's k: |ak| < |ab|
     const bool empty = std::none_of(near.begin(), near.end(), [&](int k) {
       return cmp(a, d.P[k], a, b) == CGAL::SMALLER && cmp(b, d.P[k], b, a) == CGAL::SMALLER;
     });
@@ -233,6 +246,7 @@ Eigen::MatrixX2i beta_skeleton(const Eigen::MatrixX2d& V, double b, BetaNeighbor
   if (b == 0.5) return relative_neighborhood_graph(V);
   const Delaunay d = delaunay(V);
   const Eigen::MatrixX2i G = gabriel_graph(V);  // the lune holds the Gabriel disc
+  PointsNear points_near(d);
   std::vector<Edge> out;
   for (Eigen::Index e = 0; e < G.rows(); ++e) {
     const Eigen::Vector2d p = V.row(G(e, 0)), q = V.row(G(e, 1));
@@ -243,9 +257,12 @@ Eigen::MatrixX2i beta_skeleton(const Eigen::MatrixX2d& V, double b, BetaNeighbor
       const Eigen::Vector2d cp = p + (q - p) / (2 * (1 - b)), cq = q + (p - q) / (2 * (1 - b));
       return (x - cp).squaredNorm() < R * R && (x - cq).squaredNorm() < R * R;
     };
-    const bool empty = std::none_of(d.rows.begin(), d.rows.end(), [&](int k) {
-      return k != G(e, 0) && k != G(e, 1) && in_lune(V.row(k).transpose());
-    });
+    // The lune lies in the disc of radius R around cp (b < 1); the strip of
+    // b = 1 is unbounded: every point is asked.
+    const auto blocks = [&](int k) { return k != G(e, 0) && k != G(e, 1) && in_lune(V.row(k).transpose()); };
+    const Eigen::Vector2d centre = p + (q - p) / (2 * (1 - b));
+    const bool empty = b == 1 ? std::none_of(d.rows.begin(), d.rows.end(), blocks)
+                              : std::ranges::none_of(points_near(K::Point_2(centre.x(), centre.y()), len / (2 * (1 - b))), blocks);
     if (empty) out.push_back({G(e, 0), G(e, 1)});
   }
   return to_matrix(out);
