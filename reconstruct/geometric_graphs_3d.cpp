@@ -56,8 +56,8 @@ struct Candidates {
   std::vector<std::vector<int>> neighbours;
 };
 
-// Every pair of points within each group of more than one item (cells or
-// faces joined in `groups`; `points_of` lists an item's points).
+// Every pair of points within each group of more than one item (cells
+// joined in `groups`; `points_of` lists an item's points).
 template <typename PointsOf>
 void all_pairs_of_groups(UnionFind& groups, std::size_t items, PointsOf&& points_of, std::vector<Edge>& out) {
   std::vector<int> size(items, 0);
