@@ -596,15 +596,17 @@ std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree,
 // cone of a→b (width ≤ 0.45·α) at distance ≤ |ab|/3.3. Then, with ψ the
 // angle qab ≤ α/2 and |aq| ≤ |ab|/3, angle aqb > π - α, i.e. q lies in the
 // lens N_γ(floor,floor) = {p : angle apb > π - α}, α = asin(1-|floor|).
-std::vector<Index<2>> screened_pairs(const Input<2>& in, double floor) {
+// Calls visit(s) for every candidate pair, without storing them (the
+// candidates of a large input do not fit in memory).
+template <typename Visit>
+void for_each_screened(const Input<2>& in, double floor, Visit&& visit) {
   const int n = static_cast<int>(in.P.size());
   const double alpha = std::asin(1.0 - std::abs(floor));
   const int cones = static_cast<int>(std::ceil(2 * kPi / (0.45 * alpha)));
-  std::vector<Index<2>> out;
   if (!(alpha > 0) || cones > 512) {
     for (int a = 0; a < n; ++a)
-      for (int b = a + 1; b < n; ++b) out.push_back({a, b});
-    return out;
+      for (int b = a + 1; b < n; ++b) visit(Index<2>{a, b});
+    return;
   }
   const double width = 2 * kPi / cones;
   const auto cone = [&](int a, int b) {
@@ -624,21 +626,17 @@ std::vector<Index<2>> screened_pairs(const Input<2>& in, double floor) {
       const double len2 = (in.P[b] - in.P[a]).squaredNorm();
       if (len2 >= factor * near[static_cast<std::size_t>(a) * cones + cone(a, b)]) continue;
       if (len2 >= factor * near[static_cast<std::size_t>(b) * cones + cone(b, a)]) continue;
-      out.push_back({a, b});
+      visit(Index<2>{a, b});
     }
-  return out;
 }
 
-std::vector<Index<3>> screened_pairs_or_triples(const Input<3>& in, double) {
+// 3D: every triple (no screen yet), one at a time.
+template <typename Visit>
+void for_each_screened(const Input<3>& in, double, Visit&& visit) {
   const int n = static_cast<int>(in.P.size());
-  std::vector<Index<3>> out;
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b)
-      for (int c = b + 1; c < n; ++c) out.push_back({a, b, c});
-  return out;
-}
-std::vector<Index<2>> screened_pairs_or_triples(const Input<2>& in, double floor) {
-  return screened_pairs(in, floor);
+      for (int c = b + 1; c < n; ++c) visit(Index<3>{a, b, c});
 }
 
 // All simplices with c'1 ≥ floor and their profiles (exact for c'1 < 0 when
@@ -653,13 +651,12 @@ std::vector<Candidate<D>> candidates(const Input<D>& in, double floor) {
   }
   if (floor >= 0) return out;
   const KdTree<D> tree(in.P);
-  const auto screened = screened_pairs_or_triples(in, floor);
-  for (const Index<D>& s : screened) {
+  for_each_screened(in, floor, [&](const Index<D>& s) {
     const auto pr = lens_profile<D>(in, tree, s, floor);
-    if (!pr) continue;
+    if (!pr) return;
     const auto cp = largest_empty(*pr);
     if (cp && (*cp)[1] < 0 && (*cp)[1] >= floor) out.push_back({s, *pr});
-  }
+  });
   return out;
 }
 
@@ -720,12 +717,12 @@ std::vector<Index<D>> negative_graph(const Input<D>& in, double c0, double c1) {
   }
   std::sort(with_ball.begin(), with_ball.end());
   const KdTree<D> tree(in.P);
-  for (const Index<D>& s : screened_pairs_or_triples(in, c1)) {
+  for_each_screened(in, c1, [&](const Index<D>& s) {
     Index<D> key = s;
     std::sort(key.begin(), key.end());
-    if (std::binary_search(with_ball.begin(), with_ball.end(), key)) continue;
+    if (std::binary_search(with_ball.begin(), with_ball.end(), key)) return;
     if (lens_neighborhood_empty<D>(in, tree, s, c0, c1)) rows.push_back(s);
-  }
+  });
   return rows;
 }
 
