@@ -44,12 +44,16 @@ class BoxGrid {
     v.erase(std::remove_if(v.begin(), v.end(), [id](const Entry& e) { return e.id == id; }), v.end());
   }
   /// Calls f(id) for every id whose box meets `region`. When f returns bool,
-  /// false stops the visit; visit returns false then.
+  /// false stops the visit; visit returns false then. f may also take the
+  /// box as filed (rounded outwards to floats) after the id: f(id, box),
+  /// returning bool.
   template <typename F>
   bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
     const auto call = [&](const Entry& e) {
       if (!e.meets(region)) return true;
-      if constexpr (std::is_same_v<std::invoke_result_t<F&, int>, bool>) {
+      if constexpr (std::is_invocable_v<F&, int, const Eigen::AlignedBox3d&>) {
+        return static_cast<bool>(f(e.id, e.box()));
+      } else if constexpr (std::is_same_v<std::invoke_result_t<F&, int>, bool>) {
         return static_cast<bool>(f(e.id));
       } else {
         f(e.id);
@@ -90,6 +94,9 @@ class BoxGrid {
         lo[k] = std::nextafter(static_cast<float>(box.min()[k]), -std::numeric_limits<float>::infinity());
         hi[k] = std::nextafter(static_cast<float>(box.max()[k]), std::numeric_limits<float>::infinity());
       }
+    }
+    Eigen::AlignedBox3d box() const {
+      return {Eigen::Vector3f(lo[0], lo[1], lo[2]).cast<double>(), Eigen::Vector3f(hi[0], hi[1], hi[2]).cast<double>()};
     }
     bool meets(const Eigen::AlignedBox3d& region) const {
       for (int k = 0; k < 3; ++k)
