@@ -1,5 +1,5 @@
 // Open addressing from 64-bit keys to small values, for the hot lookups of
-// constriction's edge counts and the boundary surface's grid cells:
+// the boundary surface's grid cells:
 // multiplicative hashing, linear probing, no erase (callers reset a value
 // instead). Keys must leave bit 63 clear (all ones marks an empty slot).
 #pragma once
