@@ -38,7 +38,8 @@ constexpr double kGammaWeight = 0.25;
 struct Candidate {
   std::uint64_t order;
   int cell;
-  std::uint32_t state;  // the cell's state word when queued (Constrictor::state_)
+  std::uint8_t state;   // the cell's state byte when queued (Constrictor::state_)
+  std::uint8_t faces;   // bit i: face i of the cell was boundary then
   static std::uint64_t order_of(double key) {
     const auto bits = std::bit_cast<std::uint64_t>(key + 0.0);
     return bits >> 63 ? ~bits : bits | kSign;
@@ -86,7 +87,14 @@ class Constrictor {
         heap_.pop();
       }
       if (state_[static_cast<std::size_t>(top.cell)] != top.state) continue;  // removed, or its boundary changed
-      if (!removable(top.cell)) continue;  // line 5: deletions elsewhere may have blocked it
+      // Line 5: deletions elsewhere may have blocked it. Its own boundary
+      // faces are those it was queued with (no neighbour went since: the
+      // state matches); what may have changed is whether the opposite
+      // vertex or edge has reached the boundary meanwhile.
+      int faces[D + 1], n = 0;
+      for (int i = 0; i <= D; ++i)
+        if (top.faces >> i & 1u) faces[n++] = i;
+      if (!removable(top.cell, faces, n)) continue;
       remove(top.cell);
       if (done && !ranked) ++extra;
       if (options_.progress) options_.progress(static_cast<double>(boundary_vertices_) / static_cast<double>(target_));
@@ -290,11 +298,8 @@ class Constrictor {
     return fixed_[static_cast<std::size_t>(c)] >> i & 1u;
   }
 
-  bool removable(int c) const {
-    int faces[D + 1];
-    return removable(c, faces, boundary_faces(c, faces));
-  }
-  // The same, given c's boundary faces.
+  // Whether kept cell c may be removed (§5.2, §5.3), given its n boundary
+  // faces.
   bool removable(int c, const int (&faces)[D + 1], int n) const {
     if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     for (int k = 0; k < n; ++k)
@@ -312,7 +317,9 @@ class Constrictor {
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
     if (!removable(c, faces, n)) return;
-    const Candidate candidate{Candidate::order_of(key(c, faces, n)), c, state_[static_cast<std::size_t>(c)]};
+    std::uint8_t mask = 0;
+    for (int k = 0; k < n; ++k) mask = static_cast<std::uint8_t>(mask | 1u << faces[k]);
+    const Candidate candidate{Candidate::order_of(key(c, faces, n)), c, state_[static_cast<std::size_t>(c)], mask};
     if (const int rank = carve_rank(c); rank >= 0) {
       ranked_.push({rank, candidate});
     } else {
