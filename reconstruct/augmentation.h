@@ -3,11 +3,14 @@
 // on with tetrahedra of γ([-1,1],[c0,1]), c0 < 0, lowering c0 step by step.
 #pragma once
 
+#include "reconstruct/delaunay_complex.h"
+
 #include <Eigen/Core>
 
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 namespace scanstation {
@@ -26,15 +29,30 @@ struct Augmentation {
   std::size_t carved = 0;
 };
 
-/// The Delaunay neighbours of every point in one array (compressed rows):
-/// those of v are list[start[v] .. start[v + 1]). A vector per point costs
-/// about twice the memory (growth slack and allocator headers), and
-/// augmentation runs at the reconstruction's memory peak.
-struct PointNeighbours {
-  std::vector<int> start, list;
-  std::span<const int> operator[](std::size_t v) const {
-    return {list.data() + start[v], static_cast<std::size_t>(start[v + 1] - start[v])};
-  }
+/// The Delaunay neighbours of the points. Only the cells around each point
+/// are indexed up front (a counting sort); a point's neighbours are listed
+/// when first asked for, in the order of the cells around it. Augmentation
+/// asks for those of the points constriction left inside and of the points
+/// near its carves: listing every point's neighbours in advance took longer
+/// than augmentation itself on CGAL's meshes.
+class PointNeighbours {
+ public:
+  explicit PointNeighbours(const DelaunayComplex<2>& dt);
+  explicit PointNeighbours(const DelaunayComplex<3>& dt);
+  /// Valid as long as this object lives.
+  std::span<const int> operator[](std::size_t v) const;
+
+ private:
+  template <typename Cells>
+  void index_cells(const Cells& cells, std::size_t points);
+
+  const int* vertices_ = nullptr;  // the complex's cell matrix, read in place
+  std::ptrdiff_t cell_step_ = 0, vertex_step_ = 0;
+  int per_cell_ = 0;
+  std::vector<std::size_t> start_;  // cells around v: around_[start_[v] .. start_[v + 1])
+  std::vector<int> around_;
+  mutable std::unordered_map<std::size_t, std::vector<int>> lists_;  // node-based: spans stay valid
+  mutable std::vector<std::size_t> seen_;  // per point: 1 + the point whose list saw it last
 };
 
 /// points             #P by 3 positions (distinct)

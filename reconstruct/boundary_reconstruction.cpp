@@ -146,47 +146,6 @@ void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constr
   s.boundary_vertices = dt.points.rows() - static_cast<Eigen::Index>(s.interior_vertices.size());
 }
 
-// Delaunay neighbours of every point, in no particular order. Linear: the
-// cells around each point (counting sort), then their vertices, each once
-// (a per-point stamp instead of sorting the ~7 copies of every neighbour),
-// counted in a first pass so the list is allocated once at its size.
-template <int D>
-PointNeighbours adjacency(const DelaunayComplex<D>& dt) {
-  const auto n = static_cast<std::size_t>(dt.points.rows());
-  std::vector<std::size_t> start(n + 1, 0);
-  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-    for (int i = 0; i <= D; ++i) ++start[static_cast<std::size_t>(dt.cells(c, i)) + 1];
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<int> around(start[n]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-    for (int i = 0; i <= D; ++i) around[fill[static_cast<std::size_t>(dt.cells(c, i))]++] = static_cast<int>(c);
-  std::vector<int> seen(n, -1);
-  // f(v, u) for every neighbour u of v, each once; the stamp is v's number
-  // in pass 0 and −2 − v in pass 1.
-  const auto each_neighbour = [&](int pass, auto&& f) {
-    for (std::size_t v = 0; v < n; ++v) {
-      const int stamp = pass == 0 ? static_cast<int>(v) : -2 - static_cast<int>(v);
-      seen[v] = stamp;
-      for (std::size_t k = start[v]; k < start[v + 1]; ++k)
-        for (int i = 0; i <= D; ++i) {
-          const int u = dt.cells(around[k], i);
-          if (seen[static_cast<std::size_t>(u)] == stamp) continue;
-          seen[static_cast<std::size_t>(u)] = stamp;
-          f(v, u);
-        }
-    }
-  };
-  PointNeighbours out;
-  out.start.assign(n + 1, 0);
-  each_neighbour(0, [&](std::size_t v, int) { ++out.start[v + 1]; });
-  for (std::size_t v = 0; v < n; ++v) out.start[v + 1] += out.start[v];
-  out.list.resize(static_cast<std::size_t>(out.start[n]));
-  std::vector<int> next(out.start.begin(), out.start.end() - 1);
-  each_neighbour(1, [&](std::size_t v, int u) { out.list[static_cast<std::size_t>(next[v]++)] = u; });
-  return out;
-}
-
 // How many rows of `wanted` (#K by D vertex indices) are faces of
 // `boundary` (#B by D), as unordered tuples.
 template <typename Faces>
@@ -224,7 +183,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   if (!c.all_on_boundary && options.augment) {
     const auto start = std::chrono::steady_clock::now();
     const Augmentation a =
-        augment_constriction(dt.points, adjacency(dt), out.mesh.faces, c.interior_vertices, options.augmentation);
+        augment_constriction(dt.points, PointNeighbours(dt), out.mesh.faces, c.interior_vertices, options.augmentation);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
     s.carved = a.carved;
@@ -301,7 +260,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   s.constriction_seconds = seconds_since(start);
   if (!c.all_on_boundary && options.augment) {
     start = std::chrono::steady_clock::now();
-    const Augmentation a = augment_constriction(Eigen::MatrixX2d(dt.points), adjacency(dt), c.boundary,
+    const Augmentation a = augment_constriction(Eigen::MatrixX2d(dt.points), PointNeighbours(dt), c.boundary,
                                                 c.interior_vertices, options.augmentation);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
