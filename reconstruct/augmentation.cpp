@@ -13,28 +13,16 @@
 namespace scanstation {
 
 template <typename Cells>
-void PointNeighbours::index_cells(const Cells& cells, std::size_t points) {
-  vertices_ = cells.data();
-  cell_step_ = Cells::IsRowMajor ? cells.outerStride() : 1;
-  vertex_step_ = Cells::IsRowMajor ? 1 : cells.outerStride();
-  per_cell_ = static_cast<int>(cells.cols());
-  start_.assign(points + 1, 0);
-  for (Eigen::Index c = 0; c < cells.rows(); ++c)
-    for (int i = 0; i < per_cell_; ++i) ++start_[static_cast<std::size_t>(cells(c, i)) + 1];
-  for (std::size_t v = 0; v < points; ++v) start_[v + 1] += start_[v];
-  around_.resize(start_[points]);
-  std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
-  for (Eigen::Index c = 0; c < cells.rows(); ++c)
-    for (int i = 0; i < per_cell_; ++i) around_[fill[static_cast<std::size_t>(cells(c, i))]++] = static_cast<int>(c);
-  seen_.assign(points, 0);
-}
+PointNeighbours::PointNeighbours(const Cells& cells, CellsAround around)
+    : vertices_(cells.data()),
+      cell_step_(Cells::IsRowMajor ? cells.outerStride() : 1),
+      vertex_step_(Cells::IsRowMajor ? 1 : cells.outerStride()),
+      per_cell_(static_cast<int>(cells.cols())),
+      cells_around_(std::move(around)),
+      seen_(cells_around_.start.size() - 1, 0) {}
 
-PointNeighbours::PointNeighbours(const DelaunayComplex<2>& dt) {
-  index_cells(dt.cells, static_cast<std::size_t>(dt.points.rows()));
-}
-PointNeighbours::PointNeighbours(const DelaunayComplex<3>& dt) {
-  index_cells(dt.cells, static_cast<std::size_t>(dt.points.rows()));
-}
+PointNeighbours::PointNeighbours(const DelaunayComplex<2>& dt) : PointNeighbours(dt.cells, CellsAround(dt)) {}
+PointNeighbours::PointNeighbours(const DelaunayComplex<3>& dt) : PointNeighbours(dt.cells, CellsAround(dt)) {}
 
 std::span<const int> PointNeighbours::operator[](std::size_t v) const {
   auto [it, fresh] = lists_.try_emplace(v);
@@ -42,8 +30,8 @@ std::span<const int> PointNeighbours::operator[](std::size_t v) const {
     // Each once, in the order of the cells around v (a stamp per point
     // instead of sorting the ~7 copies of every neighbour).
     seen_[v] = v + 1;
-    for (std::size_t k = start_[v]; k < start_[v + 1]; ++k) {
-      const int* cell = vertices_ + around_[k] * cell_step_;
+    for (const int c : cells_around_[v]) {
+      const int* cell = vertices_ + c * cell_step_;
       for (int i = 0; i < per_cell_; ++i) {
         const auto u = static_cast<std::size_t>(cell[i * vertex_step_]);
         if (seen_[u] == v + 1) continue;

@@ -44,13 +44,12 @@ class PointNeighbours {
 
  private:
   template <typename Cells>
-  void index_cells(const Cells& cells, std::size_t points);
+  PointNeighbours(const Cells& cells, CellsAround around);
 
   const int* vertices_ = nullptr;  // the complex's cell matrix, read in place
   std::ptrdiff_t cell_step_ = 0, vertex_step_ = 0;
   int per_cell_ = 0;
-  std::vector<std::size_t> start_;  // cells around v: around_[start_[v] .. start_[v + 1])
-  std::vector<int> around_;
+  CellsAround cells_around_;
   mutable std::unordered_map<std::size_t, std::vector<int>> lists_;  // node-based: spans stay valid
   mutable std::vector<std::size_t> seen_;  // per point: 1 + the point whose list saw it last
 };

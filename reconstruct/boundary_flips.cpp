@@ -70,16 +70,7 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
 // 25 per point).
 class CellFlips {
  public:
-  CellFlips(const DelaunayComplex<3>& dt, BoxGrid foreign)
-      : dt_(dt), start_(static_cast<std::size_t>(dt.points.rows()) + 1, 0), foreign_(std::move(foreign)) {
-    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-      for (int i = 0; i < 4; ++i) ++start_[static_cast<std::size_t>(dt.cells(c, i)) + 1];
-    for (std::size_t v = 1; v < start_.size(); ++v) start_[v] += start_[v - 1];
-    around_.resize(start_.back());
-    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
-    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-      for (int i = 0; i < 4; ++i) around_[fill[static_cast<std::size_t>(dt.cells(c, i))]++] = static_cast<int>(c);
-  }
+  CellFlips(const DelaunayComplex<3>& dt, BoxGrid foreign) : dt_(dt), around_(dt), foreign_(std::move(foreign)) {}
   /// Flipping (a, b) to (c, d) adds or removes a cell far from foreign flips.
   bool toggles(int a, int b, int c, int d) const {
     if (!is_cell(a, b, c, d)) return false;
@@ -101,16 +92,15 @@ class CellFlips {
   bool is_cell(int a, int b, int c, int d) const { return cell_around(a, {b, c, d}); }
   // Whether a cell around point a holds every point of `others`.
   bool cell_around(int a, std::initializer_list<int> others) const {
-    for (std::size_t k = start_[static_cast<std::size_t>(a)]; k < start_[static_cast<std::size_t>(a) + 1]; ++k) {
+    for (const int cell : around_[static_cast<std::size_t>(a)]) {
       std::size_t found = 0;
-      for (int i = 0; i < 4; ++i) found += std::find(others.begin(), others.end(), dt_.cells(around_[k], i)) != others.end();
+      for (int i = 0; i < 4; ++i) found += std::find(others.begin(), others.end(), dt_.cells(cell, i)) != others.end();
       if (found == others.size()) return true;
     }
     return false;
   }
   const DelaunayComplex<3>& dt_;
-  std::vector<std::size_t> start_;
-  std::vector<int> around_;
+  CellsAround around_;
   BoxGrid foreign_;
   int foreign_count_ = 0;
 };

@@ -260,7 +260,7 @@ class Constrictor {
   }
 
   // The γ-indicators the guide computed, kept for the selection key, which
-  // asks for the same faces (on real meshes 44% of all evaluations). Only
+  // asks for the same faces (on bunny00 284k of the 650k evaluations). Only
   // written entries are ever read (gamma_known_), so the array's untouched
   // pages are never faulted in: where constriction removes little, as on
   // a convex sample, it costs nothing.

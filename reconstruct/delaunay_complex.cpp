@@ -205,4 +205,22 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
   return out;
 }
 
+namespace {
+template <int D>
+void index_cells_around(const DelaunayComplex<D>& dt, std::vector<std::size_t>& start, std::vector<int>& around) {
+  const auto points = static_cast<std::size_t>(dt.points.rows());
+  start.assign(points + 1, 0);
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i <= D; ++i) ++start[static_cast<std::size_t>(dt.cells(c, i)) + 1];
+  for (std::size_t v = 0; v < points; ++v) start[v + 1] += start[v];
+  around.resize(start[points]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i <= D; ++i) around[fill[static_cast<std::size_t>(dt.cells(c, i))]++] = static_cast<int>(c);
+}
+}  // namespace
+
+CellsAround::CellsAround(const DelaunayComplex<2>& dt) { index_cells_around(dt, start, around); }
+CellsAround::CellsAround(const DelaunayComplex<3>& dt) { index_cells_around(dt, start, around); }
+
 }  // namespace scanstation

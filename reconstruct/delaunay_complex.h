@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
+#include <span>
 #include <vector>
 
 namespace scanstation {
@@ -51,5 +53,17 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 /// InvalidInput for fewer than 3 distinct points or all points on a line.
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
                                     std::vector<Eigen::Index>& map);
+
+/// The cells around each point of a complex, by a counting sort (linear):
+/// those of v, in increasing cell order.
+struct CellsAround {
+  explicit CellsAround(const DelaunayComplex<2>& dt);
+  explicit CellsAround(const DelaunayComplex<3>& dt);
+  std::span<const int> operator[](std::size_t v) const {
+    return {around.data() + start[v], start[v + 1] - start[v]};
+  }
+  std::vector<std::size_t> start;  // those of v: around[start[v] .. start[v + 1])
+  std::vector<int> around;
+};
 
 }  // namespace scanstation
