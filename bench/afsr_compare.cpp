@@ -3,7 +3,8 @@
 // (their original triangles are the known answer).
 //
 //   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton]
-//                            [--flips area|area-then-delaunay|off] [--unfold on|off] [--genus0] MESH.off ...
+//                            [--flips area|area-then-delaunay|off] [--unfold on|off] [--carve-gaps on|off]
+//                            [--genus0] MESH.off ...
 //
 // --genus0 keeps the meshes whose own triangles form one closed (orientable)
 // 2-manifold surface of genus 0 with 300 to 200k vertices, all used: issue
@@ -137,6 +138,8 @@ static int run(int argc, char** argv) {
       const std::string flips = argv[++a];
       if (flips == "area-then-delaunay") options.flips = FlipCriterion::area_then_delaunay;
       if (flips == "off") options.flips.reset();
+    } else if (std::string(argv[a]) == "--carve-gaps" && a + 1 < argc) {
+      if (std::string(argv[++a]) == "on") options.gaps = GapOptions{};
     } else if (std::string(argv[a]) == "--unfold" && a + 1 < argc) {
       options.unfold = std::string(argv[++a]) != "off";
     } else if (std::string(argv[a]) == "--method" && a + 1 < argc) {

@@ -164,6 +164,22 @@ std::size_t faces_on(const Eigen::MatrixXi& wanted, const Faces& boundary) {
   return count;
 }
 
+// The cells constriction removes first: those the lines of sight cross,
+// nearest the viewpoints first, then those in gaps, nearest the hull first.
+std::vector<int> carve_first(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& original,
+                             const ReconstructionOptions& options, BoundaryStatistics& s) {
+  const auto count = [](const std::vector<int>& ranks) {
+    return static_cast<std::size_t>(std::count_if(ranks.begin(), ranks.end(), [](int rank) { return rank >= 0; }));
+  };
+  std::vector<int> seen, gaps;
+  if (!options.sight_lines.empty()) seen = line_of_sight_depths(dt, original, options.sight_lines);
+  if (options.gaps) gaps = gap_depths(dt, *options.gaps);
+  s.sight_line_cells = count(seen);
+  std::vector<int> ranks = carve_first_then(std::move(seen), gaps);
+  s.gap_cells = count(ranks) - s.sight_line_cells;
+  return ranks;
+}
+
 }  // namespace
 
 ConstrictionOptions constriction_options(const ReconstructionOptions& options) {
@@ -232,11 +248,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
 
   const auto start = std::chrono::steady_clock::now();
   ConstrictionOptions constriction = constriction_options(options);
-  if (!options.sight_lines.empty()) {
-    constriction.carve_first = line_of_sight_depths(dt, triangulated.original, options.sight_lines);
-    s.sight_line_cells = static_cast<std::size_t>(std::count_if(
-        constriction.carve_first.begin(), constriction.carve_first.end(), [](int depth) { return depth >= 0; }));
-  }
+  constriction.carve_first = carve_first(dt, triangulated.original, options, s);
   Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton)
                                                : constrict(dt, constriction);
   s.constriction_seconds = seconds_since(start);

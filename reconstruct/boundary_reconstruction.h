@@ -8,6 +8,7 @@
 #include "reconstruct/augmentation.h"
 #include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
+#include "reconstruct/gap_carving.h"
 #include "reconstruct/line_of_sight.h"
 #include "reconstruct/unfold_boundary.h"
 #include "reconstruct/voronoi_skeleton.h"
@@ -54,6 +55,11 @@ struct ReconstructionOptions {
   /// the Delaunay cells these lines of sight cross are carved first
   /// (reconstruct/line_of_sight.h, ConstrictionOptions::carve_first).
   std::vector<SightLine> sight_lines;
+  /// 3D: carve first the cells the outside reaches through faces far wider
+  /// than the sampling around them (gaps between parts), after the lines of
+  /// sight (reconstruct/gap_carving.h); nullopt (default): not. Not done by
+  /// the incremental repair (docs/design.md, "Gap carving").
+  std::optional<GapOptions> gaps;
 };
 
 struct BoundaryStatistics {
@@ -74,6 +80,7 @@ struct BoundaryStatistics {
   std::size_t unfolded = 0;               ///< fold patches re-triangulated flat
   std::size_t guide_faces = 0;            ///< faces kept by γ-guided constriction
   std::size_t sight_line_cells = 0;       ///< Delaunay cells crossed by the lines of sight
+  std::size_t gap_cells = 0;              ///< Delaunay cells found in gaps, carved first
   double flip_seconds = 0.0;
   double unfold_seconds = 0.0;
   double delaunay_seconds = 0.0;

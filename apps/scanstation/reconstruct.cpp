@@ -39,7 +39,8 @@ nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Ei
           {"folds_left", s.folds_left},
           {"unfolded_patches", s.unfolded},
           {"guide_faces", s.guide_faces},
-          {"sight_line_cells", s.sight_line_cells}};
+          {"sight_line_cells", s.sight_line_cells},
+          {"gap_cells", s.gap_cells}};
 }
 
 class ReconstructCommand final : public Command {
@@ -68,6 +69,12 @@ class ReconstructCommand final : public Command {
     cli_->add_option("--unfold", unfold_,
                      "3D, last: where the surface folds back on itself (faces turning by more than 120°) in a nearly "
                      "flat patch, re-triangulate the patch flat (on) or keep it (off)")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->capture_default_str();
+    cli_->add_option("--carve-gaps", carve_gaps_,
+                     "3D: carve first the cells the outside reaches through faces far wider than the point spacing "
+                     "around them (gaps between parts, e.g. legs), before constriction seals them with long thin "
+                     "triangles (on CGAL's 26 closed genus-0 meshes: more true triangles on 11, fewer on 5)")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     cli_->add_option("--guide", guide_,
@@ -110,6 +117,7 @@ class ReconstructCommand final : public Command {
     if (flips_ == "off") options_.flips.reset();
     if (flips_ == "area-then-delaunay") options_.flips = FlipCriterion::area_then_delaunay;
     options_.unfold = unfold_ == "on";
+    if (carve_gaps_ == "on") options_.gaps = GapOptions{};
     configure_guide();
     if (method_ == "voronoi-skeleton") options_.voronoi_skeleton = VoronoiSkeletonOptions{seeds_};
     configure_augmentation();
@@ -257,6 +265,7 @@ class ReconstructCommand final : public Command {
   std::size_t seeds_ = VoronoiSkeletonOptions{}.max_seeds;
   std::string flips_ = "area";
   std::string unfold_ = "on";
+  std::string carve_gaps_ = "off";
   std::string guide_ = "0.7,0";
   std::optional<std::filesystem::path> keep_, interior_, viewpoints_;
   std::vector<double> viewpoint_;

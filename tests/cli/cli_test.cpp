@@ -270,6 +270,15 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   report = nlohmann::json::parse(slurp(dir / "d3.json"));
   EXPECT_EQ(report["result"]["all_on_boundary"], true);
   EXPECT_EQ(report["result"]["boundary"]["topology"]["simple"], true);
+  EXPECT_EQ(report["result"]["gap_cells"], 0);
+  // Gap carving (off by default) reports the cells it carved first.
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "gap.off") + " --carve-gaps on --report " + path(dir / "gap.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  report = nlohmann::json::parse(slurp(dir / "gap.json"));
+  EXPECT_GT(report["result"]["gap_cells"].get<int>(), 0);
+  EXPECT_EQ(report["result"]["all_on_boundary"], true);
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["genus"], 0);
+  EXPECT_EQ(report["result"]["boundary"]["topology"]["simple"], true);
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "c.off") + " --method min-area-change");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "s.off") + " --method voronoi-skeleton --seeds 50 --report " +

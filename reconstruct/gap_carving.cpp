@@ -1,0 +1,150 @@
+#include "reconstruct/gap_carving.h"
+
+#include "core/errors.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace scanstation {
+
+namespace {
+
+// Keeps the k shortest distinct lengths offered, ascending, in s[0, k)
+// (infinite until filled).
+void offer(double* s, std::size_t k, double length) {
+  if (length >= s[k - 1]) return;  // most lengths, once the shortest are known
+  for (std::size_t i = 0; i < k; ++i) {
+    if (s[i] == length) return;  // an edge is met once per cell around it
+    if (length < s[i]) {
+      std::copy_backward(s + i, s + k - 1, s + k);
+      s[i] = length;
+      return;
+    }
+  }
+}
+
+// The k-th of them, or the last one known when fewer were offered; 0 when
+// none was.
+double kth(const double* s, std::size_t k) {
+  for (std::size_t i = k; i-- > 0;)
+    if (std::isfinite(s[i])) return s[i];
+  return 0.0;
+}
+
+// Per point, the square of its spacing: the k-th shortest distinct length of
+// its Delaunay edges.
+std::vector<double> spacing_of_points(const DelaunayComplex<3>& dt, int k) {
+  const auto points = static_cast<std::size_t>(dt.points.rows());
+  const auto stride = static_cast<std::size_t>(k);
+  std::vector<double> shortest(points * stride, std::numeric_limits<double>::infinity());
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const int a = dt.cells(c, i), b = dt.cells(c, j);
+        const double length = (dt.points.row(a) - dt.points.row(b)).squaredNorm();
+        offer(shortest.data() + static_cast<std::size_t>(a) * stride, stride, length);
+        offer(shortest.data() + static_cast<std::size_t>(b) * stride, stride, length);
+      }
+  std::vector<double> spacing(points);
+  for (std::size_t v = 0; v < points; ++v) spacing[v] = kth(shortest.data() + v * stride, stride);
+  return spacing;
+}
+
+}  // namespace
+
+std::vector<int> gap_depths(const DelaunayComplex<3>& dt, const GapOptions& options) {
+  if (options.neighbour < 1) throw InvalidInput("gap carving: the spacing neighbour must be at least 1");
+  if (!(options.width > 0)) throw InvalidInput("gap carving: the width factor must be positive");
+  if (options.depth < 0) throw InvalidInput("gap carving: the least depth of a gap must not be negative");
+  const std::vector<double> spacing = spacing_of_points(dt, options.neighbour);
+  const double width = options.width * options.width;
+  const auto wide = [&](Eigen::Index c, int i) {
+    int v[3], n = 0;
+    for (int k = 0; k < 4; ++k)
+      if (k != i) v[n++] = dt.cells(c, k);
+    const Eigen::Vector3d a = dt.points.row(v[0]), b = dt.points.row(v[1]), d = dt.points.row(v[2]);
+    const double local = std::max({spacing[static_cast<std::size_t>(v[0])], spacing[static_cast<std::size_t>(v[1])],
+                                   spacing[static_cast<std::size_t>(v[2])]});
+    if (!(local > 0)) return false;
+    // The squared radius of the smallest ball holding the face, in units of
+    // the squared spacing (no product overflows at any scale): a quarter of
+    // the longest edge's square when the face has an angle of 90° or more,
+    // else the circumradius's, |ab|²|ad|²|bd|² / (4 |(b − a) × (d − a)|²).
+    // Not the circumradius alone: an almost flat face has a huge one.
+    double e[3] = {(b - a).squaredNorm() / local, (d - a).squaredNorm() / local, (d - b).squaredNorm() / local};
+    std::sort(e, e + 3);
+    double radius = e[2] / 4.0;
+    if (e[0] + e[1] > e[2]) {
+      const double cross = (b - a).cross(d - a).squaredNorm() / (local * local);
+      if (cross > 0) radius = e[0] * e[1] * e[2] / (4.0 * cross);
+    }
+    return radius > width;
+  };
+
+  // Breadth first from the cells with a wide hull face, through wide faces.
+  std::vector<int> depth(static_cast<std::size_t>(dt.cells.rows()), -1);
+  std::vector<Eigen::Index> queue;
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i < 4; ++i)
+      if (dt.neighbors(c, i) < 0 && wide(c, i)) {
+        depth[static_cast<std::size_t>(c)] = 0;
+        queue.push_back(c);
+        break;
+      }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const Eigen::Index c = queue[head];
+    for (int i = 0; i < 4; ++i) {
+      const int n = dt.neighbors(c, i);
+      if (n >= 0 && depth[static_cast<std::size_t>(n)] < 0 && wide(c, i)) {
+        depth[static_cast<std::size_t>(n)] = depth[static_cast<std::size_t>(c)] + 1;
+        queue.push_back(n);
+      }
+    }
+  }
+
+  // The reached cells in parts joined by wide faces; a part that nowhere
+  // reaches options.depth cells from the hull is dropped (it lies under a
+  // few wide faces, not in a gap): on CGAL's handle.off that is worth 1.7
+  // points of triangle recall (0.546 → 0.563), and nothing elsewhere.
+  std::vector<char> grouped(depth.size(), 0);
+  std::vector<Eigen::Index> members;
+  for (const Eigen::Index start : queue) {
+    if (grouped[static_cast<std::size_t>(start)]) continue;
+    members.assign(1, start);
+    grouped[static_cast<std::size_t>(start)] = 1;
+    int deepest = 0;
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const Eigen::Index c = members[k];
+      deepest = std::max(deepest, depth[static_cast<std::size_t>(c)]);
+      for (int i = 0; i < 4; ++i) {
+        const int n = dt.neighbors(c, i);
+        if (n >= 0 && depth[static_cast<std::size_t>(n)] >= 0 && !grouped[static_cast<std::size_t>(n)] && wide(c, i)) {
+          grouped[static_cast<std::size_t>(n)] = 1;
+          members.push_back(n);
+        }
+      }
+    }
+    if (deepest < options.depth)
+      for (const Eigen::Index c : members) depth[static_cast<std::size_t>(c)] = -1;
+  }
+  return depth;
+}
+
+std::vector<int> carve_first_then(std::vector<int> first, const std::vector<int>& then) {
+  const auto ranked = [](const std::vector<int>& ranks) {
+    return std::any_of(ranks.begin(), ranks.end(), [](int rank) { return rank >= 0; });
+  };
+  if (!ranked(then)) return ranked(first) ? first : std::vector<int>{};
+  if (!ranked(first)) return then;
+  if (first.size() != then.size()) throw InvalidInput("carve order: ranks for different numbers of cells");
+  const int after = *std::max_element(first.begin(), first.end()) + 1;
+  for (std::size_t c = 0; c < first.size(); ++c)
+    if (first[c] < 0 && then[c] >= 0) first[c] = after + then[c];
+  return first;
+}
+
+}  // namespace scanstation
