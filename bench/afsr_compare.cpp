@@ -4,7 +4,7 @@
 //
 //   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton]
 //                            [--flips area|area-then-delaunay|off] [--unfold on|off] [--carve-gaps on|off]
-//                            [--genus0] MESH.off ...
+//                            [--genus0] [--no-afsr] MESH.off ...
 //
 // --genus0 keeps the meshes whose own triangles form one closed (orientable)
 // 2-manifold surface of genus 0 with 300 to 200k vertices, all used: issue
@@ -12,6 +12,9 @@
 // names it (26 meshes). A file that cannot be read or reconstructed (e.g.
 // points in one plane) is reported and skipped; the means cover the rows
 // compared.
+//
+// --no-afsr leaves CGAL's Advancing Front out (about half the run time, for
+// comparing our own options).
 //
 // --method picks our side: by default what `scanstation reconstruct` does in
 // 3D (area change and γ-indicator), or the thesis' γ-indicator, or one of the
@@ -128,10 +131,12 @@ static int run(int argc, char** argv) {
   double noise = 0.0;
   ReconstructionOptions options = surface_defaults();  // as the command does in 3D
   std::vector<std::string> files;
-  bool genus0_only = false;
+  bool genus0_only = false, with_afsr = true;
   for (int a = 1; a < argc; ++a) {
     if (std::string(argv[a]) == "--genus0") {
       genus0_only = true;
+    } else if (std::string(argv[a]) == "--no-afsr") {
+      with_afsr = false;
     } else if (std::string(argv[a]) == "--noise" && a + 1 < argc) {
       noise = std::stod(argv[++a]);
     } else if (std::string(argv[a]) == "--flips" && a + 1 < argc) {
@@ -168,7 +173,8 @@ static int run(int argc, char** argv) {
           for (int c = 0; c < 3; ++c) points(i, c) += noise * diagonal * random.normal();
       }
       double delaunay = 0;
-      const Row ours = constriction(truth, points, options, delaunay), afsr = advancing_front(truth, points);
+      const Row ours = constriction(truth, points, options, delaunay);
+      const Row afsr = with_afsr ? advancing_front(truth, points) : Row{};
       seconds_delaunay += delaunay;
       const auto good = [](const Row& r) { return r.closed && r.genus == 0 && r.all_points; };
       ++compared;
@@ -178,10 +184,14 @@ static int run(int argc, char** argv) {
       seconds_ours += ours.seconds;
       seconds_unfold += ours.unfold_seconds;
       sum_afsr += afsr.recall;
-      std::printf("%-24s %8lld | %8.3f %5.2f %6s %5s %6.3f | %8.3f %6s %5s %6.3f\n", name.c_str(),
-                  static_cast<long long>(points.rows()), ours.seconds, ours.seconds / delaunay, ours.closed && ours.genus == 0 ? "yes" : "no",
-                  ours.all_points ? "yes" : "no", ours.recall, afsr.seconds,
-                  afsr.closed && afsr.genus == 0 ? "yes" : "no", afsr.all_points ? "yes" : "no", afsr.recall);
+      std::printf("%-24s %8lld | %8.3f %5.2f %6s %5s %6.3f |", name.c_str(), static_cast<long long>(points.rows()),
+                  ours.seconds, ours.seconds / delaunay, ours.closed && ours.genus == 0 ? "yes" : "no",
+                  ours.all_points ? "yes" : "no", ours.recall);
+      if (with_afsr)
+        std::printf(" %8.3f %6s %5s %6.3f\n", afsr.seconds, afsr.closed && afsr.genus == 0 ? "yes" : "no",
+                    afsr.all_points ? "yes" : "no", afsr.recall);
+      else
+        std::printf(" %8s %6s %5s %6s\n", "-", "-", "-", "-");
     } catch (const std::exception& e) {
       ++skipped;
       std::printf("%-24s skipped: %s\n", name.c_str(), e.what());
@@ -189,8 +199,12 @@ static int run(int argc, char** argv) {
     std::fflush(stdout);
   }
   const double n = static_cast<double>(std::max(compared, 1));
-  std::printf("closed genus-0 through all points: ours %d of %d, AFSR %d of %d; mean recall: ours %.3f, AFSR %.3f",
-              ok_ours, compared, ok_afsr, compared, sum_ours / n, sum_afsr / n);
+  if (with_afsr)
+    std::printf("closed genus-0 through all points: ours %d of %d, AFSR %d of %d; mean recall: ours %.3f, AFSR %.3f",
+                ok_ours, compared, ok_afsr, compared, sum_ours / n, sum_afsr / n);
+  else
+    std::printf("closed genus-0 through all points: ours %d of %d; mean recall: ours %.3f (AFSR not run)", ok_ours,
+                compared, sum_ours / n);
   std::printf(skipped > 0 ? "; %d skipped\n" : "\n", skipped);
   std::printf("ours: %.3f s in all (%.2f× CGAL's Delaunay tetrahedralizations, %.3f s), of which unfolding %.3f s (%.1f%%)\n",
               seconds_ours, seconds_ours / std::max(seconds_delaunay, 1e-300), seconds_delaunay, seconds_unfold,
