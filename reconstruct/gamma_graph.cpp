@@ -484,6 +484,8 @@ class KdTree {
     if (order_.empty()) return true;
     return walk(0, static_cast<int>(order_.size()), 0, lo_, hi_, region, visit);
   }
+  /// Whether visit(region, …) would call visit(i): the same filter.
+  bool reaches(const Region<D>& region, int i) const { return meets(P_[static_cast<std::size_t>(i)], region); }
 
  private:
   void build(int lo, int hi, int depth) {
@@ -535,6 +537,16 @@ class KdTree {
   Vec lo_, hi_;  // bounding box of all points
 };
 
+// The vertices that last blocked a query, one per kind of query. The
+// candidates come in runs sharing all but one vertex (the triples (a, b, ·)),
+// whose neighbourhoods overlap: a vertex that blocked one usually blocks the
+// next, and one exact test of it replaces a k-d walk (measured in
+// gamma_values' comment, reconstruct/gamma_graph.h). It is tested only if
+// the walk would reach it, so the answers are the walk's.
+struct Blockers {
+  int last[2] = {-1, -1};
+};
+
 // Exact profile of s when c'1 < 0 and c'1 ≥ floor, else nullopt.
 // Phase 1: is a vertex inside the lens N_γ(floor,floor) = ball(floor) ∩
 // ball(-floor)? (k-d nodes must meet both balls.) Then c'1 < floor.
@@ -544,7 +556,7 @@ class KdTree {
 // here (the Delaunay path has them).
 template <int D>
 std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree,
-                                    const std::type_identity_t<Index<D>>& s, double floor) {
+                                    const std::type_identity_t<Index<D>>& s, double floor, Blockers& blockers) {
   const Pencil<D> pencil(positions(in, s));
   if (!GammaTraits<D>::is_simplex(pencil.s)) return std::nullopt;
   const double f = std::abs(floor);
@@ -562,12 +574,17 @@ std::optional<Profile> lens_profile(const Input<D>& in, const KdTree<D>& tree,
   // The lens lies in the smallest ball and in the slab |n·(x-m)| < R - offset.
   const double c = pencil.n.dot(pencil.m), w = R - offset;
   const Region<D> lens{{Ball<D>{pencil.m, pencil.r}, towards_a, towards_b}, {{pencil.n, c - w, c + w}}, pencil.m};
-  Profile probe;
-  const bool lens_empty = tree.visit(lens, [&](int i) {
-    if (own(i)) return true;
-    probe = Profile{};
+  const auto in_lens = [&](int i) {
+    Profile probe;
     pencil.add(probe, i, in.P[i]);
-    return !(probe.blocked || probe.disc || probe.hi < floor || probe.lo > -floor);
+    return probe.blocked || probe.disc || probe.hi < floor || probe.lo > -floor;
+  };
+  int& last = blockers.last[0];
+  if (last >= 0 && !own(last) && tree.reaches(lens, last) && in_lens(last)) return std::nullopt;
+  const bool lens_empty = tree.visit(lens, [&](int i) {
+    if (own(i) || !in_lens(i)) return true;
+    last = i;
+    return false;
   });
   if (!lens_empty) return std::nullopt;
   // Shrinking searches: side-A vertices with t_p < τ fill ball(τ) ∩ A, and τ
@@ -651,8 +668,9 @@ std::vector<Candidate<D>> candidates(const Input<D>& in, double floor) {
   }
   if (floor >= 0) return out;
   const KdTree<D> tree(in.P);
+  Blockers blockers;
   for_each_screened(in, floor, [&](const Index<D>& s) {
-    const auto pr = lens_profile<D>(in, tree, s, floor);
+    const auto pr = lens_profile<D>(in, tree, s, floor, blockers);
     if (!pr) return;
     const auto cp = largest_empty(*pr);
     if (cp && (*cp)[1] < 0 && (*cp)[1] >= floor) out.push_back({s, *pr});
@@ -680,7 +698,7 @@ Eigen::Matrix<int, Eigen::Dynamic, D> to_matrix(const Input<D>& in, std::vector<
 // lo and hi: that is what Definition 3.3's values need, not a fixed graph.
 template <int D>
 bool lens_neighborhood_empty(const Input<D>& in, const KdTree<D>& tree, const std::type_identity_t<Index<D>>& s,
-                             double c0, double c1) {
+                             double c0, double c1, Blockers& blockers) {
   const Pencil<D> pencil(positions(in, s));
   if (!GammaTraits<D>::is_simplex(pencil.s)) return false;
   const auto own = [&](int i) { return std::find(s.begin(), s.end(), i) != s.end(); };
@@ -689,13 +707,20 @@ bool lens_neighborhood_empty(const Input<D>& in, const KdTree<D>& tree, const st
     const double off = std::sqrt(std::max(0.0, R * R - pencil.r * pencil.r));
     return Ball<D>{pencil.m + (t < 0 ? -off : off) * pencil.n, R};
   };
+  int* last = blockers.last;
   for (const auto& [t0, t1] : {std::pair{-c0, c1}, std::pair{c0, -c1}}) {
     const Region<D> region{{ball_at(t0), ball_at(t1)}, {}, pencil.m};
-    const bool empty = tree.visit(region, [&](int i) {
-      if (own(i)) return true;
+    const auto inside = [&](int i) {
       Profile one;
       pencil.add(one, i, in.P[i]);
-      return balls_empty(one, t0, t1, true);
+      return !balls_empty(one, t0, t1, true);
+    };
+    int& blocker = *last++;
+    if (blocker >= 0 && !own(blocker) && tree.reaches(region, blocker) && inside(blocker)) continue;
+    const bool empty = tree.visit(region, [&](int i) {
+      if (own(i) || !inside(i)) return true;
+      blocker = i;
+      return false;
     });
     if (empty) return true;
   }
@@ -717,11 +742,12 @@ std::vector<Index<D>> negative_graph(const Input<D>& in, double c0, double c1) {
   }
   std::sort(with_ball.begin(), with_ball.end());
   const KdTree<D> tree(in.P);
+  Blockers blockers;
   for_each_screened(in, c1, [&](const Index<D>& s) {
     Index<D> key = s;
     std::sort(key.begin(), key.end());
     if (std::binary_search(with_ball.begin(), with_ball.end(), key)) return;
-    if (lens_neighborhood_empty<D>(in, tree, s, c0, c1)) rows.push_back(s);
+    if (lens_neighborhood_empty<D>(in, tree, s, c0, c1, blockers)) rows.push_back(s);
   });
   return rows;
 }

@@ -105,8 +105,21 @@ Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range)
 /// sphere took 217 ms, 2.7 s, 28.6 s, up to 5.6× the brute force. 3D still
 /// enumerates every triple (no screen like 2D's Yao cones), one at a time:
 /// the vertices of CGAL's cactus mesh (620 points, 39.6M triples, 40.7k
-/// triangles in γ(0,-0.5)) take 13 s and 71 MB (845 MB when the candidates
-/// were stored first).
+/// triangles in γ(0,-0.5)) take 9.5–10.5 s and 71 MB (845 MB when the
+/// candidates were stored first). The vertex that blocked the previous
+/// query of each kind is tried before the k-d walk, if the walk would
+/// reach it (same answers): consecutive candidates share all but one
+/// vertex. Against the walk alone (alternating runs): the cactus 12.0–13.2 s
+/// → 9.5–10.5 s; gamma_bench 3D uniform 240 points 633–742 → 604–608 ms, 2D
+/// noisy circle 2000 points 662–787 → 559–590 ms, the noisy sphere (most
+/// triples in the graph, nothing blocks) unchanged within the noise.
+/// Where a triple's time goes now: its pencil (circumcircle, normal) and
+/// the exact side and power tests of the vertices tried. A screen of
+/// pairs, as in 2D, does not carry over: in 3D the lenses of all triangles
+/// on an edge have only a small ball around the edge's midpoint in common
+/// (radius about |ab|/16 at floor -0.5 for triangles whose angle opposite
+/// the edge is within 30°–150°), which chords through the inside of a
+/// solid (the lenses of its cross-section triangles are empty) never hold.
 void gamma_values(const Eigen::MatrixX2d& V, double floor, Eigen::MatrixX2i& S, Eigen::MatrixX2d& C);
 void gamma_values(const Eigen::MatrixX3d& V, double floor, Eigen::MatrixX3i& S, Eigen::MatrixX2d& C);
 
