@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 namespace scanstation {
 
@@ -52,5 +53,25 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
                           const Eigen::MatrixXi& keep, double min_gain = 1e-3,
                           const DelaunayComplex<3>* cells = nullptr,
                           std::optional<BoundarySurface>* surface = nullptr);
+
+/// Delaunay flips of the boundary of a union of Delaunay cells, each made by
+/// adding or removing one cell: an edge (a, b) between the boundary
+/// triangles (a, b, c) and (b, a, d) becomes (c, d) when (a, b, c, d) is a
+/// cell with exactly those two faces on the boundary, (c, d) is not on the
+/// boundary yet, and FlipCriterion::area_then_delaunay's Delaunay flip
+/// wants it (the angles opposite (a, b) sum beyond π, the quad is flat
+/// within 45°, and (c, d) is locally Delaunay); largest excess first, at
+/// most 4 flips per boundary triangle. A cell's faces meet the other cell
+/// faces only in shared vertices and edges, so no flip needs a geometric
+/// test, and the boundary stays closed, 2-manifold and of the same genus
+/// through the same points (a flip of a cell union is constriction's
+/// two-face removal, §5.3, or its inverse); `kept` stays a triangulation of
+/// the enclosed solid (§5.8).
+/// complex  the Delaunay complex
+/// kept     (in/out) one flag per cell, 1 inside: its boundary must be a
+///          closed 2-manifold
+/// keep     #K by 3 triangles never flipped away (§5.7), may be empty
+/// Returns the flips made.
+std::size_t flip_delaunay_cells(const DelaunayComplex<3>& complex, std::vector<char>& kept, const Eigen::MatrixXi& keep);
 
 }  // namespace scanstation

@@ -195,6 +195,18 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
                     SurfaceReconstruction& out) {
   BoundaryStatistics& s = out.statistics;
   s.guide_faces = c.guide_faces;
+  if (options.cell_flips) {
+    // Before augmentation: these flips need a boundary of cells.
+    const auto start = std::chrono::steady_clock::now();
+    s.cell_flips = flip_delaunay_cells(dt, c.kept, options.constriction.keep);
+    if (s.cell_flips > 0) {
+      Constriction<3> flipped = pruned_boundary(dt, std::move(c.kept));
+      flipped.removed_cells = c.removed_cells;
+      flipped.guide_faces = c.guide_faces;
+      c = std::move(flipped);
+    }
+    s.flip_seconds = seconds_since(start);
+  }
   out.mesh.faces = c.boundary;
   if (!c.all_on_boundary && options.augment) {
     const auto start = std::chrono::steady_clock::now();
@@ -209,7 +221,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   if (options.flips) {
     const auto start = std::chrono::steady_clock::now();
     s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt, &surface);
-    s.flip_seconds = seconds_since(start);
+    s.flip_seconds += seconds_since(start);
   }
   if (options.unfold) {
     const auto start = std::chrono::steady_clock::now();

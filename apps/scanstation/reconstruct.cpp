@@ -34,6 +34,7 @@ nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Ei
           {"removed_cells", s.removed_cells},
           {"c0_used", s.c0_used ? nlohmann::json(*s.c0_used) : nlohmann::json(nullptr)},
           {"carved", s.carved},
+          {"cell_flips", s.cell_flips},
           {"flips", s.flips},
           {"folds", s.folds},
           {"folds_left", s.folds_left},
@@ -59,6 +60,12 @@ class ReconstructCommand final : public Command {
     cli_->add_option("--augment", augment_,
                      "When constriction locks (§5.4): auto (lower c0 from -0.1 to -1 until every point is on the "
                      "boundary), off, or a fixed c0 in [-1, 0)")
+        ->capture_default_str();
+    cli_->add_option("--cell-flips", cell_flips_,
+                     "3D, right after constriction: Delaunay flips that add or remove one Delaunay cell, where the "
+                     "boundary is nearly flat (on; no geometric test needed, the interior stays a triangulation) or "
+                     "off (a convex surface then stays its convex hull)")
+        ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     cli_->add_option("--flips", flips_,
                      "3D, after constriction: area (flip edges while the surface area drops, §4.3.2), "
@@ -117,6 +124,7 @@ class ReconstructCommand final : public Command {
     if (flips_ == "off") options_.flips.reset();
     if (flips_ == "area-then-delaunay") options_.flips = FlipCriterion::area_then_delaunay;
     options_.unfold = unfold_ == "on";
+    options_.cell_flips = cell_flips_ == "on";
     if (carve_gaps_ == "on") options_.gaps = GapOptions{};
     configure_guide();
     if (method_ == "voronoi-skeleton") options_.voronoi_skeleton = VoronoiSkeletonOptions{seeds_};
@@ -265,6 +273,7 @@ class ReconstructCommand final : public Command {
   std::size_t seeds_ = VoronoiSkeletonOptions{}.max_seeds;
   std::string flips_ = "area";
   std::string unfold_ = "on";
+  std::string cell_flips_ = "on";
   std::string carve_gaps_ = "off";
   std::string guide_ = "0.7,0";
   std::optional<std::filesystem::path> keep_, interior_, viewpoints_;

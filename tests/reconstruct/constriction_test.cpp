@@ -22,8 +22,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <set>
 
@@ -31,6 +33,18 @@ namespace scanstation {
 namespace {
 
 double signed_volume(const TriangleMesh& m) { return enclosed_volume(m.vertices.positions, m.faces); }
+
+// n points at random on the ellipsoid with radii 3, 2, 1 (a smooth convex
+// surface: constriction ends at its convex hull).
+Eigen::MatrixX3d random_ellipsoid(Eigen::Index n, std::uint64_t seed) {
+  sim::Random random(seed);
+  Eigen::MatrixX3d P(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d p(random.normal(), random.normal(), random.normal());
+    P.row(i) = (p.normalized().array() * Eigen::Array3d(3, 2, 1)).matrix().transpose();
+  }
+  return P;
+}
 
 // Points sampled at random over the relief mask (the thesis' Figure 5.6), with
 // and without noise of 0.1% of its size: valid through every point.
@@ -184,10 +198,12 @@ TEST(Constriction3, RealCgalMeshes) {
 TEST(Constriction3, DelaunayFlipsKeepTheGuaranteesAndRecoverDelaunayMeshes) {
   for (const std::string name : {"ellipe0.003", "cactus", "cow"}) {
     const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/" + name + ".off"));
-    ReconstructionOptions delaunay = surface_defaults();
+    ReconstructionOptions area_only = surface_defaults();
+    area_only.cell_flips = false;
+    ReconstructionOptions delaunay = area_only;
     delaunay.flips = FlipCriterion::area_then_delaunay;
     const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions, delaunay);
-    const SurfaceReconstruction area = reconstruct_surface(truth.vertices.positions, surface_defaults());
+    const SurfaceReconstruction area = reconstruct_surface(truth.vertices.positions, area_only);
     EXPECT_TRUE(r.statistics.all_on_boundary) << name;
     expect_valid_surface(r, name + " Delaunay flips");
     EXPECT_GE(r.statistics.flips, area.statistics.flips) << name;
@@ -195,6 +211,106 @@ TEST(Constriction3, DelaunayFlipsKeepTheGuaranteesAndRecoverDelaunayMeshes) {
       EXPECT_GT(triangle_recall(truth.faces, r.mesh.faces), triangle_recall(truth.faces, area.mesh.faces) + 0.1);
     }
   }
+}
+
+// The Delaunay flips made by toggling cells (flip_delaunay_cells), against an
+// independent reading of their rule on the result: every point stays on the
+// boundary, which stays closed, genus 0 and simple, the kept cells fill it,
+// and no edge is left whose flip the rule allows — found from the boundary's
+// half-edges and a table of the cells, angles by atan2 (the pass takes
+// acos), with a margin so that rounding cannot decide.
+TEST(Constriction3, CellFlipsLeaveNoDelaunayCellFlipAndKeepTheGuarantees) {
+  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
+  for (const std::string name : {"ellipe0.003", "sphere966", "cactus", "cow", "bull"})
+    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
+  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, 11));
+  for (const auto& [name, P] : inputs) {
+    const DelaunayComplex<3> dt = delaunay_complex(P);
+    const Constriction<3> c = constrict(dt, constriction_options(surface_defaults()));
+    std::vector<char> kept = c.kept;
+    const std::size_t flips = flip_delaunay_cells(dt, kept, Eigen::MatrixXi(0, 3));
+    const Constriction<3> after = pruned_boundary(dt, kept);
+    EXPECT_EQ(after.interior_vertices, c.interior_vertices) << name;
+    EXPECT_EQ(after.boundary.rows(), c.boundary.rows()) << name;
+    if (name == "ellipe0.003" || name == "ellipsoid") {
+      EXPECT_GT(flips, 100u) << name;
+    }
+
+    SurfaceReconstruction r;
+    r.mesh.vertices.positions = dt.points;
+    r.mesh.faces = after.boundary;
+    r.statistics.interior_vertices = after.interior_vertices;
+    std::vector<int> inside;
+    for (std::size_t k = 0; k < kept.size(); ++k)
+      if (kept[k]) inside.push_back(static_cast<int>(k));
+    r.interior.resize(static_cast<Eigen::Index>(inside.size()), 4);
+    for (std::size_t k = 0; k < inside.size(); ++k) r.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(inside[k]);
+    expect_valid_surface(r, name + " after cell flips");
+
+    // The rule, read off the result.
+    std::map<std::array<int, 4>, int> cells;
+    for (Eigen::Index t = 0; t < dt.cells.rows(); ++t) {
+      std::array<int, 4> q{dt.cells(t, 0), dt.cells(t, 1), dt.cells(t, 2), dt.cells(t, 3)};
+      std::sort(q.begin(), q.end());
+      cells[q] = static_cast<int>(t);
+    }
+    std::set<std::array<int, 3>> faces;
+    std::map<std::pair<int, int>, int> third;  // directed edge (a, b) of face (a, b, c) → c
+    for (Eigen::Index f = 0; f < after.boundary.rows(); ++f) {
+      std::array<int, 3> t{after.boundary(f, 0), after.boundary(f, 1), after.boundary(f, 2)};
+      for (int k = 0; k < 3; ++k) third[{t[k], t[(k + 1) % 3]}] = t[(k + 2) % 3];
+      std::sort(t.begin(), t.end());
+      faces.insert(t);
+    }
+    const auto on_boundary = [&](int a, int b, int d) {
+      std::array<int, 3> t{a, b, d};
+      std::sort(t.begin(), t.end());
+      return faces.count(t) > 0;
+    };
+    const auto point = [&](int v) { return Eigen::Vector3d(dt.points.row(v).transpose()); };
+    const auto angle = [&](int apex, int u, int v) {
+      const Eigen::Vector3d x = point(u) - point(apex), y = point(v) - point(apex);
+      return std::atan2(x.cross(y).norm(), x.dot(y));
+    };
+    std::size_t left = 0;
+    for (const auto& [edge, cv] : third) {
+      const auto [a, b] = edge;
+      if (a > b) continue;
+      const int d = third.at({b, a});
+      std::array<int, 4> q{a, b, cv, d};
+      std::sort(q.begin(), q.end());
+      if (!cells.count(q)) continue;  // no cell: not a cell flip
+      if (on_boundary(a, cv, d) || on_boundary(b, cv, d) || third.count({cv, d}) || third.count({d, cv})) continue;
+      const Eigen::Vector3d n1 = (point(b) - point(a)).cross(point(cv) - point(a)),
+                            n2 = (point(a) - point(b)).cross(point(d) - point(b));
+      const bool flat = std::atan2(n1.cross(n2).norm(), n1.dot(n2)) < (45.0 - 0.1) * std::numbers::pi / 180.0;
+      const double margin = 1e-6;
+      if (flat && angle(cv, a, b) + angle(d, b, a) > std::numbers::pi + margin &&
+          angle(a, cv, d) + angle(b, d, cv) < std::numbers::pi - margin)
+        ++left;
+    }
+    EXPECT_EQ(left, 0u) << name << ": " << flips << " flips made";
+  }
+}
+
+// With cell flips alone after constriction (no augmentation, flips or
+// unfolding), the result keeps its interior triangulation; a convex surface
+// is no longer its convex hull.
+TEST(Constriction3, CellFlipsKeepTheInteriorAndRecoverADelaunayMesh) {
+  const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/ellipe0.003.off"));
+  ReconstructionOptions cells_only = surface_defaults();
+  cells_only.flips.reset();
+  cells_only.unfold = false;
+  ReconstructionOptions none = cells_only;
+  none.cell_flips = false;
+  const SurfaceReconstruction with = reconstruct_surface(truth.vertices.positions, cells_only);
+  const SurfaceReconstruction without = reconstruct_surface(truth.vertices.positions, none);
+  EXPECT_GT(with.statistics.cell_flips, 100u);
+  EXPECT_EQ(without.statistics.cell_flips, 0u);
+  ASSERT_GT(with.interior.rows(), 0);
+  expect_valid_surface(with, "ellipe0.003 with cell flips");
+  EXPECT_GT(triangle_recall(truth.faces, with.mesh.faces), 0.99);
+  EXPECT_LT(triangle_recall(truth.faces, without.mesh.faces), 0.8);
 }
 
 // A flip that adds a Delaunay cell to the solid constriction left, or takes
@@ -207,13 +323,7 @@ TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
   std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
   for (const std::string name : {"cactus", "triceratops", "ellipe0.003", "hand"})
     inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
-  sim::Random random(5);
-  Eigen::MatrixX3d ellipsoid(3000, 3);
-  for (Eigen::Index i = 0; i < ellipsoid.rows(); ++i) {
-    const Eigen::Vector3d p(random.normal(), random.normal(), random.normal());
-    ellipsoid.row(i) = (p.normalized().array() * Eigen::Array3d(3, 2, 1)).matrix().transpose();
-  }
-  inputs.emplace_back("ellipsoid", ellipsoid);
+  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, 5));
   for (const auto& [name, P] : inputs) {
     const DelaunayComplex<3> dt = delaunay_complex(P);
     const Constriction<3> c = constrict(dt, constriction_options(surface_defaults()));
