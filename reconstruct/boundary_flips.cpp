@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <numeric>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -48,6 +49,23 @@ double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen:
   const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
   if (n1.dot(n2) < std::cos(kFlatDegrees * kPi / 180.0) * n1.norm() * n2.norm()) return 0.0;
   return before - kPi;
+}
+
+// flip_gain's Delaunay rule as a yes or no, without acos: the angles at c
+// and d opposite (a, b) sum beyond π (their cotangents sum below zero), those
+// at a and b opposite (c, d) do not, and the normals are within 45°. A
+// degenerate triangle's cotangent is infinite or NaN, and NaN wants nothing.
+bool delaunay_flip_wanted(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                          const Eigen::Vector3d& d) {
+  const auto cot = [](const Eigen::Vector3d& apex, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+    const Eigen::Vector3d x = u - apex, y = v - apex;
+    return x.dot(y) / x.cross(y).norm();
+  };
+  if (!(cot(c, a, b) + cot(d, b, a) < -1e-9) || !(cot(a, c, d) + cot(b, d, c) > 0)) return false;
+  const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
+  const double dot = n1.dot(n2);
+  const double cos2 = 0.5;  // cos² 45°, kFlatDegrees
+  return dot > 0 && dot * dot >= cos2 * n1.squaredNorm() * n2.squaredNorm();
 }
 
 // Edges (a < b) worth a flip, found from the face list alone, so that a
@@ -181,37 +199,37 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
 class CellToggles {
  public:
   CellToggles(const DelaunayComplex<3>& dt, std::vector<char>& kept, std::vector<Triangle> fixed)
-      : dt_(dt), kept_(kept), fixed_(std::move(fixed)) {}
-
-  // Rounds: a flip can also free an edge whose faces it did not touch (by
-  // taking (c, d) off the boundary, or a face off the boundary next to the
-  // edge's cell), so every boundary edge is looked at again until a round
-  // makes no flip; the budget (pops, over all rounds) bounds the whole.
-  std::size_t run() {
-    std::size_t flips = 0, budget = 4 * scan();
-    while (!queue_.empty() && budget > 0) {
-      std::size_t round = 0;
-      while (!queue_.empty() && budget > 0) {
-        --budget;
-        const Candidate top = queue_.top();
-        queue_.pop();
-        const auto flip = flip_at(top.cell, top.a, top.b);
-        if (!flip || !(gain_if_allowed(*flip) > 0)) continue;
-        const int t = flip->cell;
-        kept_[static_cast<std::size_t>(t)] = !kept_[static_cast<std::size_t>(t)];
-        ++round;
-        for (const auto& [u, v] : {std::pair{flip->a, flip->d}, std::pair{flip->d, flip->b},
-                                   std::pair{flip->b, flip->c}, std::pair{flip->c, flip->a}})
-          consider(t, std::min(u, v), std::max(u, v));
-      }
-      flips += round;
-      ++rounds_;
-      if (round == 0) break;
-      scan();
-    }
-    return flips;
+      : dt_(dt), kept_(kept), fixed_(std::move(fixed)), points_(static_cast<std::size_t>(dt.points.rows())) {
+    // A point's coordinates together (the complex keeps them by column).
+    for (std::size_t v = 0; v < points_.size(); ++v) points_[v] = dt.points.row(static_cast<Eigen::Index>(v)).transpose();
   }
-  std::size_t rounds() const { return rounds_; }
+
+  // A flip is a cell with exactly two faces on the boundary: they share an
+  // edge (a, b), and toggling the cell flips it to (c, d). One sweep over
+  // the cells in storage order (CGAL's spatial order: nearby cells are near
+  // in memory) makes each flip the rule allows as it is met (Lawson's order
+  // rather than the largest excess first: no queue of gains, and the walks
+  // stay local). A toggle changes which faces of its four neighbours are on
+  // the boundary, and takes (a, b) off it, which a cell around (a, b) may
+  // have waited for; those cells go on a stack and are tried at once, while
+  // they are still in the caches. So no flip is left at the end, unless 8
+  // flips per point were made.
+  std::size_t run() {
+    // 4 flips per boundary triangle: a closed genus-0 surface through at
+    // most all the points has fewer than 2 triangles per point.
+    budget_ = 8 * static_cast<std::size_t>(dt_.points.rows());
+    queued_.assign(static_cast<std::size_t>(cells()), 0);
+    for (int c = 0; c < cells() && budget_ > 0; ++c) {
+      try_cell(c);
+      while (!stack_.empty() && budget_ > 0) {
+        const int x = stack_.back();
+        stack_.pop_back();
+        queued_[static_cast<std::size_t>(x)] = 0;
+        try_cell(x);
+      }
+    }
+    return flips_;
+  }
 
  private:
   // Faces (a, b, c) and (b, a, d), counter-clockwise from outside, and the
@@ -219,37 +237,50 @@ class CellToggles {
   struct Flip {
     int cell, a, b, c, d;
   };
-  struct Candidate {
-    double gain;
-    int a, b, cell;  // cell: one holding the edge (a, b)
-    bool operator<(const Candidate& o) const { return gain != o.gain ? gain < o.gain : std::tie(a, b) > std::tie(o.a, o.b); }
-  };
-
   int cells() const { return static_cast<int>(dt_.cells.rows()); }
-  bool inside(int c) const { return c >= 0 && kept_[static_cast<std::size_t>(c)]; }
 
-  // Queues every boundary edge worth a flip; returns the boundary faces.
-  std::size_t scan() {
-    std::size_t faces = 0;
-    for (int c = 0; c < cells(); ++c) {
-      if (!inside(c)) continue;
-      for (int i = 0; i < 4; ++i) {
-        if (inside(dt_.neighbors(c, i))) continue;
-        ++faces;
-        for (int k = 0; k < 3; ++k) {  // each edge once: from the face holding it as (low, high)
-          const int p = dt_.cells(c, kFace3[i][k]), q = dt_.cells(c, kFace3[i][(k + 1) % 3]);
-          if (p < q) consider(c, p, q);
-        }
-      }
-    }
-    return faces;
+  void try_cell(int t) {
+    const auto flip = flip_of(t);
+    if (!flip || !allowed(*flip)) return;
+    kept_[static_cast<std::size_t>(t)] = !kept_[static_cast<std::size_t>(t)];
+    ++flips_;
+    --budget_;
+    for (int j = 0; j < 4; ++j) again(dt_.neighbors(t, j));
+    around(t, flip->a, flip->b, [&](int x) { again(x); });
   }
+  void again(int c) {
+    if (c < 0 || queued_[static_cast<std::size_t>(c)]) return;
+    queued_[static_cast<std::size_t>(c)] = 1;
+    stack_.push_back(c);
+  }
+
+  // The flip of cell t, if exactly two of its faces are on the boundary.
+  std::optional<Flip> flip_of(int t) const {
+    int off[2], n = 0;  // local vertices opposite the boundary faces: d, then c
+    for (int i = 0; i < 4; ++i)
+      if (boundary_face(t, i)) {
+        if (n == 2) return std::nullopt;
+        off[n++] = i;
+      }
+    if (n != 2) return std::nullopt;
+    // Orient: the face opposite d is counter-clockwise seen from outside
+    // the cell (kFace3), so from outside the solid when the cell is kept.
+    const int d3 = dt_.cells(t, off[0]), c3 = dt_.cells(t, off[1]);
+    const int* f = kFace3[off[0]];
+    int tri[3] = {dt_.cells(t, f[0]), dt_.cells(t, f[1]), dt_.cells(t, f[2])};
+    if (!inside(t)) std::swap(tri[1], tri[2]);
+    int j = 0;
+    while (tri[(j + 2) % 3] != c3) ++j;  // the edge's ends in face order: (a, b, c3)
+    return Flip{t, tri[j], tri[(j + 1) % 3], c3, d3};
+  }
+
+  bool inside(int c) const { return c >= 0 && kept_[static_cast<std::size_t>(c)]; }
   int local(int c, int v) const {
     int k = 0;
     while (dt_.cells(c, k) != v) ++k;
     return k;
   }
-  Eigen::Vector3d point(int v) const { return dt_.points.row(v).transpose(); }
+  const Eigen::Vector3d& point(int v) const { return points_[static_cast<std::size_t>(v)]; }
 
   // The two faces of cell c holding its edge (u, v): opposite its other
   // two vertices, given as local indices.
@@ -259,40 +290,6 @@ class CellToggles {
       if (dt_.cells(c, i) != u && dt_.cells(c, i) != v) k[n++] = i;
   }
   bool boundary_face(int c, int i) const { return inside(c) != inside(dt_.neighbors(c, i)); }
-
-  // The flip at the edge (u, v), from a cell c holding it with a boundary
-  // face at it (else none: whatever took that face away re-considers the
-  // edge from a cell that has one). The flip's cell holds both boundary
-  // faces at the edge, so it is c or its neighbour across that face, and
-  // its faces off the edge are not on the boundary.
-  std::optional<Flip> flip_at(int c, int u, int v) const {
-    int k[2];
-    off_edge(c, u, v, k);
-    const bool b0 = boundary_face(c, k[0]), b1 = boundary_face(c, k[1]);
-    int t = -1;
-    if (b0 && b1) {
-      t = c;
-    } else if (b0 || b1) {
-      const int y = dt_.neighbors(c, b0 ? k[0] : k[1]);
-      if (y < 0) return std::nullopt;
-      int l[2];
-      off_edge(y, u, v, l);
-      if (boundary_face(y, l[0]) && boundary_face(y, l[1])) t = y;
-    }
-    if (t < 0) return std::nullopt;
-    off_edge(t, u, v, k);
-    const bool side = inside(t);
-    if (boundary_face(t, local(t, u)) || boundary_face(t, local(t, v))) return std::nullopt;
-    // Orient: the face opposite d is counter-clockwise seen from outside
-    // the cell (kFace3), so from outside the solid when the cell is kept.
-    const int c3 = dt_.cells(t, k[0]), d3 = dt_.cells(t, k[1]);
-    const int* f = kFace3[k[1]];
-    int tri[3] = {dt_.cells(t, f[0]), dt_.cells(t, f[1]), dt_.cells(t, f[2])};
-    if (!side) std::swap(tri[1], tri[2]);
-    int j = 0;
-    while (tri[(j + 2) % 3] != c3) ++j;  // the edge's ends in face order: (a, b, c3)
-    return Flip{t, tri[j], tri[(j + 1) % 3], c3, d3};
-  }
 
   // Whether a boundary face holds the edge (u, v) of cell c: a walk around
   // the edge (as constriction's §5.3 test), both ways when the ring is open.
@@ -321,13 +318,37 @@ class CellToggles {
     return false;
   }
 
+  // Calls visit(x) for every cell x around the edge (u, v) of cell c.
+  template <typename Visit>
+  void around(int c, int u, int v, Visit&& visit) const {
+    int others[2];
+    off_edge(c, u, v, others);
+    others[0] = dt_.cells(c, others[0]);
+    others[1] = dt_.cells(c, others[1]);
+    for (int direction = 0; direction < 2; ++direction) {
+      int x = c, cross = others[direction], stay = others[1 - direction];
+      for (;;) {
+        const int y = dt_.neighbors(x, local(x, cross));
+        if (y < 0) break;
+        if (y == c) return;
+        visit(y);
+        int fresh = 0;
+        for (int i = 0; i < 4; ++i) {
+          const int g = dt_.cells(y, i);
+          if (g != u && g != v && g != stay) fresh = g;
+        }
+        x = y;
+        cross = stay;
+        stay = fresh;
+      }
+    }
+  }
+
   // A flip worth making and allowed: (c, d) not on the boundary yet (it
   // would meet four boundary faces), neither face kept (§5.7).
-  double gain_if_allowed(const Flip& f) const {
-    const double g =
-        flip_gain(FlipCriterion::area_then_delaunay, point(f.a), point(f.b), point(f.c), point(f.d), 0.0);
-    if (!(g > 0) || is_fixed(f.a, f.b, f.c) || is_fixed(f.b, f.a, f.d) || edge_on_boundary(f.cell, f.c, f.d)) return 0.0;
-    return g;
+  bool allowed(const Flip& f) const {
+    return delaunay_flip_wanted(point(f.a), point(f.b), point(f.c), point(f.d)) && !is_fixed(f.a, f.b, f.c) &&
+           !is_fixed(f.b, f.a, f.d) && !edge_on_boundary(f.cell, f.c, f.d);
   }
 
   bool is_fixed(int a, int b, int c) const {
@@ -337,18 +358,13 @@ class CellToggles {
     return std::binary_search(fixed_.begin(), fixed_.end(), t);
   }
 
-  void consider(int c, int u, int v) {
-    const auto flip = flip_at(c, u, v);
-    if (!flip) return;
-    const double g = gain_if_allowed(*flip);
-    if (g > 0) queue_.push({g, std::min(u, v), std::max(u, v), flip->cell});
-  }
-
   const DelaunayComplex<3>& dt_;
   std::vector<char>& kept_;
   std::vector<Triangle> fixed_;
-  std::priority_queue<Candidate> queue_;
-  std::size_t rounds_ = 0;
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<char> queued_;  // on the stack
+  std::vector<int> stack_;
+  std::size_t flips_ = 0, budget_ = 0;
 };
 
 }  // namespace

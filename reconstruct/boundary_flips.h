@@ -60,8 +60,10 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
 /// cell with exactly those two faces on the boundary, (c, d) is not on the
 /// boundary yet, and FlipCriterion::area_then_delaunay's Delaunay flip
 /// wants it (the angles opposite (a, b) sum beyond π, the quad is flat
-/// within 45°, and (c, d) is locally Delaunay); largest excess first, at
-/// most 4 flips per boundary triangle. A cell's faces meet the other cell
+/// within 45°, and (c, d) is locally Delaunay); in one sweep over the cells
+/// in storage order (Lawson's order), each flip's surroundings examined at
+/// once, until no edge is left to flip or 8 flips per point were made.
+/// A cell's faces meet the other cell
 /// faces only in shared vertices and edges, so no flip needs a geometric
 /// test, and the boundary stays closed, 2-manifold and of the same genus
 /// through the same points (a flip of a cell union is constriction's
