@@ -291,9 +291,12 @@ class CellToggles {
   }
   bool boundary_face(int c, int i) const { return inside(c) != inside(dt_.neighbors(c, i)); }
 
-  // Whether a boundary face holds the edge (u, v) of cell c: a walk around
-  // the edge (as constriction's §5.3 test), both ways when the ring is open.
-  bool edge_on_boundary(int c, int u, int v) const {
+  // Walks the ring of cells around the edge (u, v) of cell c (as
+  // constriction's §5.3 test), both ways from c when the ring is open at
+  // the convex hull: step(x, y) for each cell x and the next one y (−1
+  // beyond the hull), until it returns false. Returns false if stopped.
+  template <typename Step>
+  bool walk_around(int c, int u, int v, Step&& step) const {
     int others[2];
     off_edge(c, u, v, others);
     others[0] = dt_.cells(c, others[0]);
@@ -302,9 +305,9 @@ class CellToggles {
       int x = c, cross = others[direction], stay = others[1 - direction];
       for (;;) {
         const int y = dt_.neighbors(x, local(x, cross));
-        if (inside(x) != inside(y)) return true;
+        if (!step(x, y)) return false;
         if (y < 0) break;
-        if (y == c) return false;
+        if (y == c) return true;  // closed ring, all seen
         int fresh = 0;
         for (int i = 0; i < 4; ++i) {
           const int g = dt_.cells(y, i);
@@ -315,33 +318,19 @@ class CellToggles {
         stay = fresh;
       }
     }
-    return false;
+    return true;
   }
-
-  // Calls visit(x) for every cell x around the edge (u, v) of cell c.
+  // Whether a boundary face holds the edge (u, v) of cell c.
+  bool edge_on_boundary(int c, int u, int v) const {
+    return !walk_around(c, u, v, [&](int x, int y) { return inside(x) == inside(y); });
+  }
+  // Calls visit(x) for every other cell x around the edge (u, v) of cell c.
   template <typename Visit>
   void around(int c, int u, int v, Visit&& visit) const {
-    int others[2];
-    off_edge(c, u, v, others);
-    others[0] = dt_.cells(c, others[0]);
-    others[1] = dt_.cells(c, others[1]);
-    for (int direction = 0; direction < 2; ++direction) {
-      int x = c, cross = others[direction], stay = others[1 - direction];
-      for (;;) {
-        const int y = dt_.neighbors(x, local(x, cross));
-        if (y < 0) break;
-        if (y == c) return;
-        visit(y);
-        int fresh = 0;
-        for (int i = 0; i < 4; ++i) {
-          const int g = dt_.cells(y, i);
-          if (g != u && g != v && g != stay) fresh = g;
-        }
-        x = y;
-        cross = stay;
-        stay = fresh;
-      }
-    }
+    walk_around(c, u, v, [&](int, int y) {
+      if (y >= 0 && y != c) visit(y);
+      return true;
+    });
   }
 
   // A flip worth making and allowed: (c, d) not on the boundary yet (it
