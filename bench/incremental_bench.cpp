@@ -159,7 +159,7 @@ int recall(const Args& a) {
       wide += inc.wider_repairs();
     }
     const std::string name = file.substr(file.find_last_of('/') + 1);
-    std::printf("%-14s %7lld %9.3f %9.3f %9.3f %6zu %6d\n", name.c_str(), static_cast<long long>(P.rows()), scratch, r[0],
+    std::printf("%-14s %7lld %9.4f %9.4f %9.4f %6zu %6d\n", name.c_str(), static_cast<long long>(P.rows()), scratch, r[0],
                 r[1], wide, valid);
   }
   return 0;
