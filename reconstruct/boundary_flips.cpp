@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
-#include <numeric>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -194,8 +193,8 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
   return flips;
 }
 
-// The flip pass of flip_delaunay_cells, on the kept flags alone (the
-// complex never changes, so a cell that held an edge once always does).
+// The pass of flip_delaunay_cells: it changes the kept flags only, never
+// the complex.
 class CellToggles {
  public:
   CellToggles(const DelaunayComplex<3>& dt, std::vector<char>& kept, std::vector<Triangle> fixed)
