@@ -30,30 +30,13 @@ double angle(const Eigen::Vector3d& apex, const Eigen::Vector3d& u, const Eigen:
   return std::acos(std::clamp(x.dot(y) / std::sqrt(x.squaredNorm() * y.squaredNorm()), -1.0, 1.0));
 }
 
-// How much flipping (a, b) to (c, d) is worth under a criterion (> 0: flip).
-// Area: the relative drop of the two triangles' area, when at least
-// min_gain. Delaunay: by how much the angles opposite (a, b) exceed π, when
-// the quad is nearly flat (its normals within kFlatDegrees) and the new edge
-// is locally Delaunay itself (so no flip undoes another).
+// The Delaunay rule, as a yes or no: the angles at c and d opposite (a, b)
+// sum beyond π (their cotangents sum below zero), those at a and b opposite
+// (c, d) do not (so no flip undoes another), and the quad is nearly flat
+// (its normals within kFlatDegrees). No acos: the cell flips need no more.
+// A degenerate triangle's cotangent is infinite or NaN, and NaN wants nothing.
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kFlatDegrees = 45.0;
-double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                 const Eigen::Vector3d& d, double min_gain) {
-  if (criterion == FlipCriterion::area) {
-    const double before = area(a, b, c) + area(b, a, d), after = area(a, d, c) + area(d, b, c);
-    return before > 0 && after < before * (1.0 - min_gain) ? 1.0 - after / before : 0.0;
-  }
-  const double before = angle(c, a, b) + angle(d, b, a);
-  if (!(before > kPi + 1e-9) || !(angle(a, c, d) + angle(b, d, c) < kPi)) return 0.0;
-  const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
-  if (n1.dot(n2) < std::cos(kFlatDegrees * kPi / 180.0) * n1.norm() * n2.norm()) return 0.0;
-  return before - kPi;
-}
-
-// flip_gain's Delaunay rule as a yes or no, without acos: the angles at c
-// and d opposite (a, b) sum beyond π (their cotangents sum below zero), those
-// at a and b opposite (c, d) do not, and the normals are within 45°. A
-// degenerate triangle's cotangent is infinite or NaN, and NaN wants nothing.
 bool delaunay_flip_wanted(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                           const Eigen::Vector3d& d) {
   const auto cot = [](const Eigen::Vector3d& apex, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
@@ -62,9 +45,22 @@ bool delaunay_flip_wanted(const Eigen::Vector3d& a, const Eigen::Vector3d& b, co
   };
   if (!(cot(c, a, b) + cot(d, b, a) < -1e-9) || !(cot(a, c, d) + cot(b, d, c) > 0)) return false;
   const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
-  const double dot = n1.dot(n2);
-  const double cos2 = 0.5;  // cos² 45°, kFlatDegrees
-  return dot > 0 && dot * dot >= cos2 * n1.squaredNorm() * n2.squaredNorm();
+  const double dot = n1.dot(n2), cos_flat = std::cos(kFlatDegrees * kPi / 180.0);
+  return dot > 0 && dot * dot >= cos_flat * cos_flat * n1.squaredNorm() * n2.squaredNorm();
+}
+
+// How much flipping (a, b) to (c, d) is worth under a criterion (> 0: flip).
+// Area: the relative drop of the two triangles' area, when at least
+// min_gain. Delaunay: by how much the angles opposite (a, b) exceed π, when
+// delaunay_flip_wanted.
+double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                 const Eigen::Vector3d& d, double min_gain) {
+  if (criterion == FlipCriterion::area) {
+    const double before = area(a, b, c) + area(b, a, d), after = area(a, d, c) + area(d, b, c);
+    return before > 0 && after < before * (1.0 - min_gain) ? 1.0 - after / before : 0.0;
+  }
+  if (!delaunay_flip_wanted(a, b, c, d)) return 0.0;
+  return std::max(0.0, angle(c, a, b) + angle(d, b, a) - kPi);
 }
 
 // Edges (a < b) worth a flip, found from the face list alone, so that a
