@@ -70,46 +70,68 @@ void require_finite(const Eigen::MatrixXd& P) {
   if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
 }
 
-// The Delaunay triangulation of the distinct points (unit-scaled), with
-// `first` and `map` as unique_points gives them. 3D: merging duplicates (a
-// hash pass) runs on the other core while CGAL triangulates all rows; its
-// insertion skips a repeated point, so that is the triangulation of the
-// distinct points, whose cells are then renumbered.
+// The Delaunay triangulation of the distinct points (unit-scaled), its
+// points numbered in spatial order (CGAL's vertex storage order: cells close
+// together read points close together in memory), with
+// first  per point of the complex, its input row (the first occurrence)
+// map    per input row, the point of the complex equal to it
+// output per point of the complex, its number among the distinct points in
+//        input order, as unique_points numbers them (empty: the same)
+// 3D: merging duplicates (a hash pass) runs on the other core while CGAL
+// triangulates all rows; its insertion skips a repeated point, so that is
+// the triangulation of the distinct points.
 DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& scaled,
-                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map) {
-  std::thread merge([&] { unique_points(points, first, map); });
+                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map,
+                                     std::vector<int>& output) {
+  std::vector<Eigen::Index> first_in_order, map_in_order;
+  std::thread merge([&] { unique_points(points, first_in_order, map_in_order); });
   DelaunayComplex<3> dt;
+  std::vector<Eigen::Index> rows;
   std::exception_ptr failure;
   try {
-    dt = delaunay_complex(scaled);
+    dt = delaunay_complex(scaled, rows);
   } catch (...) {
     failure = std::current_exception();
   }
   merge.join();
-  const auto distinct = static_cast<Eigen::Index>(first.size());
+  const auto distinct = static_cast<Eigen::Index>(first_in_order.size());
   if (distinct < 4)
     throw InvalidInput("need at least 4 distinct points for a closed polyhedron, got " + std::to_string(distinct));
   if (failure) std::rethrow_exception(failure);
-  if (distinct < points.rows()) {
-    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-      for (int i = 0; i < 4; ++i) dt.cells(c, i) = static_cast<int>(map[static_cast<std::size_t>(dt.cells(c, i))]);
-    dt.points.resize(distinct, 3);
-    for (Eigen::Index k = 0; k < distinct; ++k) dt.points.row(k) = scaled.row(first[static_cast<std::size_t>(k)]);
+  // CGAL merges exactly the values unique_points merges: one vertex each.
+  output.resize(rows.size());
+  std::vector<Eigen::Index> vertex_of(rows.size());  // distinct point (input order) → point of the complex
+  first.resize(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const Eigen::Index d = map_in_order[static_cast<std::size_t>(rows[k])];
+    output[k] = static_cast<int>(d);
+    vertex_of[static_cast<std::size_t>(d)] = static_cast<Eigen::Index>(k);
+    first[k] = first_in_order[static_cast<std::size_t>(d)];
   }
+  map.resize(map_in_order.size());
+  for (std::size_t i = 0; i < map.size(); ++i) map[i] = vertex_of[static_cast<std::size_t>(map_in_order[i])];
+  // The copy CGAL kept may differ from the first occurrence in the sign of
+  // a zero.
+  if (distinct < points.rows())
+    for (std::size_t k = 0; k < rows.size(); ++k) dt.points.row(static_cast<Eigen::Index>(k)) = scaled.row(first[k]);
   return dt;
 }
 
 // 2D: CGAL's insertion meets each repeated point at its vertex, which is all
-// the duplicate merging needed (no second pass over the points).
+// the duplicate merging needed (no second pass over the points); the
+// distinct points keep the complex's order in the output.
 DelaunayComplex<2> distinct_delaunay(const Eigen::MatrixX2d&, const Eigen::MatrixX2d& scaled,
-                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map) {
+                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map,
+                                     std::vector<int>& output) {
+  output.clear();
   return delaunay_complex(scaled, first, map);
 }
 
 template <int D>
 struct Triangulated {
-  Eigen::Matrix<double, Eigen::Dynamic, D> original;  // distinct points, input values
+  Eigen::Matrix<double, Eigen::Dynamic, D> original;  // distinct points, input values, in the complex's order
   DelaunayComplex<D> dt;                              // over the distinct points, unit-scaled
+  std::vector<int> output;                            // see distinct_delaunay
 };
 
 template <int D>
@@ -120,21 +142,33 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   const auto start = std::chrono::steady_clock::now();
   Triangulated<D> out;
   const double scale = unit_scale<D>(points);
-  out.dt = distinct_delaunay(points, scale == 1.0 ? points : (points * scale).eval(), first, map);
-  const auto distinct = static_cast<Eigen::Index>(first.size());
-  s.duplicates_merged = points.rows() - distinct;
-  if constexpr (D == 2) {
-    // The complex holds the distinct points in its own (spatial) order; the
-    // power of two undoes exactly.
-    out.original = scale == 1.0 ? out.dt.points : (out.dt.points / scale).eval();
-  } else if (distinct == points.rows()) {  // 3D: first is increasing, here the identity
-    out.original = points;
-  } else {
-    out.original.resize(distinct, D);
-    for (Eigen::Index k = 0; k < distinct; ++k) out.original.row(k) = points.row(first[static_cast<std::size_t>(k)]);
-  }
+  out.dt = distinct_delaunay(points, scale == 1.0 ? points : (points * scale).eval(), first, map, out.output);
+  s.duplicates_merged = points.rows() - static_cast<Eigen::Index>(first.size());
+  // The power of two undoes exactly.
+  out.original = scale == 1.0 ? out.dt.points : (out.dt.points / scale).eval();
   s.delaunay_seconds = seconds_since(start);
   return out;
+}
+
+// From the complex's numbering of the points to the output's (distinct
+// points in input order): vertices, faces, tetrahedra, interior points.
+void to_output_numbering(const std::vector<int>& output, SurfaceReconstruction& out) {
+  const auto renumber = [&](auto& indices) {
+    for (Eigen::Index i = 0; i < indices.size(); ++i)
+      indices.data()[i] = output[static_cast<std::size_t>(indices.data()[i])];
+  };
+  renumber(out.mesh.faces);
+  renumber(out.interior);
+  for (int& v : out.statistics.interior_vertices) v = output[static_cast<std::size_t>(v)];
+  std::sort(out.statistics.interior_vertices.begin(), out.statistics.interior_vertices.end());
+  Eigen::MatrixX3d positions(out.mesh.vertices.positions.rows(), 3);
+  std::vector<Eigen::Index> source(out.source.size());
+  for (std::size_t k = 0; k < output.size(); ++k) {
+    positions.row(output[k]) = out.mesh.vertices.positions.row(static_cast<Eigen::Index>(k));
+    source[static_cast<std::size_t>(output[k])] = out.source[k];
+  }
+  out.mesh.vertices.positions = std::move(positions);
+  out.source = std::move(source);
 }
 
 template <int D>
@@ -266,6 +300,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   s.constriction_seconds = seconds_since(start);
   out.mesh.vertices.positions = triangulated.original;
   finish_surface(dt, c, options, out);
+  to_output_numbering(triangulated.output, out);
   return out;
 }
 

@@ -176,7 +176,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
   return out;
 }
 
-DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
+DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen::Index>& rows) {
   require_points(P.rows(), 4, "polyhedron");
   std::vector<std::pair<Kernel::Point_3, int>> input;
   input.reserve(static_cast<std::size_t>(P.rows()));
@@ -190,8 +190,16 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
     throw InvalidInput(std::string("all points lie ") + (dt.dimension() < 2 ? "on one line" : "in one plane") +
                        ": no polyhedron encloses them");
 
+  // Points in CGAL's vertex storage order (see the 2D version).
   DelaunayComplex<3> out;
-  out.points = P;
+  out.points.resize(static_cast<Eigen::Index>(dt.number_of_vertices()), 3);
+  rows.resize(dt.number_of_vertices());
+  int k = 0;
+  for (const auto v : dt.finite_vertex_handles()) {
+    rows[static_cast<std::size_t>(k)] = v->info();
+    out.points.row(k) = P.row(v->info());
+    v->info() = k++;
+  }
   out.cells.resize(static_cast<Eigen::Index>(dt.number_of_finite_cells()), 4);
   out.neighbors.resize(out.cells.rows(), 4);
   int id = 0;
@@ -202,6 +210,15 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
       const auto n = c->neighbor(i);
       out.neighbors(c->info(), i) = dt.is_infinite(n) ? -1 : n->info();
     }
+  return out;
+}
+
+DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P) {
+  std::vector<Eigen::Index> rows;
+  DelaunayComplex<3> out = delaunay_complex(P, rows);
+  for (Eigen::Index c = 0; c < out.cells.rows(); ++c)  // back to rows of P
+    for (int i = 0; i < 4; ++i) out.cells(c, i) = static_cast<int>(rows[static_cast<std::size_t>(out.cells(c, i))]);
+  out.points = P;
   return out;
 }
 

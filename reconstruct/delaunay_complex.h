@@ -54,6 +54,13 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
                                     std::vector<Eigen::Index>& map);
 
+/// 3D: the complex with its points numbered in spatial order, as above.
+/// rows  (output) per point of the complex, the row of P it is: one row per
+///       distinct value (of a repeated row, whichever copy CGAL met first;
+///       the others appear nowhere)
+/// Returns the complex of the points P.row(rows[k]) (cells index k).
+DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen::Index>& rows);
+
 /// The cells around each point of a complex, by a counting sort (linear):
 /// those of v, in increasing cell order.
 struct CellsAround {
