@@ -200,16 +200,21 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen
     out.points.row(k) = P.row(v->info());
     v->info() = k++;
   }
-  out.cells.resize(static_cast<Eigen::Index>(dt.number_of_finite_cells()), 4);
-  out.neighbors.resize(out.cells.rows(), 4);
+  // Cells numbered in CGAL's storage order, infinite cells −1 (so a
+  // neighbour's number needs no test of its vertices): one pass for the
+  // numbers, one to copy.
   int id = 0;
-  for (auto c : dt.finite_cell_handles()) c->info() = id++;
-  for (auto c : dt.finite_cell_handles())
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = dt.is_infinite(c) ? -1 : id++;
+  out.cells.resize(id, 4);
+  out.neighbors.resize(id, 4);
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    const int k = c->info();
+    if (k < 0) continue;
     for (int i = 0; i < 4; ++i) {
-      out.cells(c->info(), i) = c->vertex(i)->info();
-      const auto n = c->neighbor(i);
-      out.neighbors(c->info(), i) = dt.is_infinite(n) ? -1 : n->info();
+      out.cells(k, i) = c->vertex(i)->info();
+      out.neighbors(k, i) = c->neighbor(i)->info();
     }
+  }
   return out;
 }
 
