@@ -233,9 +233,8 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
     // Before augmentation: these flips need a boundary of cells.
     const auto start = std::chrono::steady_clock::now();
     s.cell_flips = flip_delaunay_cells(dt, c.kept, options.constriction.keep);
-    if (s.cell_flips > 0) {
+    if (s.cell_flips > 0) {  // every cell left outside counts as removed, those the flips took out too
       Constriction<3> flipped = pruned_boundary(dt, std::move(c.kept));
-      flipped.removed_cells = c.removed_cells;
       flipped.guide_faces = c.guide_faces;
       c = std::move(flipped);
     }

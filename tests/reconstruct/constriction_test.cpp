@@ -379,6 +379,10 @@ TEST(Constriction3, CellFlipsKeepTheInteriorAndRecoverADelaunayMesh) {
   EXPECT_GT(with.statistics.cell_flips, 100u);
   EXPECT_EQ(without.statistics.cell_flips, 0u);
   ASSERT_GT(with.interior.rows(), 0);
+  // The report's removed cells are the Delaunay cells left outside.
+  EXPECT_EQ(with.statistics.removed_cells + static_cast<std::size_t>(with.interior.rows()), with.statistics.delaunay_cells);
+  EXPECT_EQ(without.statistics.removed_cells + static_cast<std::size_t>(without.interior.rows()),
+            without.statistics.delaunay_cells);
   expect_valid_surface(with, "ellipe0.003 with cell flips");
   EXPECT_GT(triangle_recall(truth.faces, with.mesh.faces), 0.99);
   EXPECT_LT(triangle_recall(truth.faces, without.mesh.faces), 0.8);
