@@ -99,6 +99,9 @@ DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, const Eigen
     throw InvalidInput("need at least 4 distinct points for a closed polyhedron, got " + std::to_string(distinct));
   if (failure) std::rethrow_exception(failure);
   // CGAL merges exactly the values unique_points merges: one vertex each.
+  if (static_cast<Eigen::Index>(rows.size()) != distinct)
+    throw TopologyError("the triangulation has " + std::to_string(rows.size()) + " vertices for " +
+                        std::to_string(distinct) + " distinct points (please report this input)");
   output.resize(rows.size());
   std::vector<Eigen::Index> vertex_of(rows.size());  // distinct point (input order) → point of the complex
   first.resize(rows.size());

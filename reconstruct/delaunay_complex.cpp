@@ -208,11 +208,11 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen
   out.cells.resize(id, 4);
   out.neighbors.resize(id, 4);
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    const int k = c->info();
-    if (k < 0) continue;
+    const int cell = c->info();
+    if (cell < 0) continue;
     for (int i = 0; i < 4; ++i) {
-      out.cells(k, i) = c->vertex(i)->info();
-      out.neighbors(k, i) = c->neighbor(i)->info();
+      out.cells(cell, i) = c->vertex(i)->info();
+      out.neighbors(cell, i) = c->neighbor(i)->info();
     }
   }
   return out;
