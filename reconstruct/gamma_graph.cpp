@@ -3,6 +3,8 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
@@ -294,6 +296,28 @@ struct Clusters {
   void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
+// The vertex sets of the clusters of more than one cell, by root: a single
+// cell's subsets are its own faces, Delaunay simplices already. Cells are
+// numbered 0..cells−1; vertices_of(t, set) adds cell t's finite vertices.
+template <typename VerticesOf>
+std::map<int, std::set<int>> cluster_groups(Clusters& uf, int cells, VerticesOf&& vertices_of) {
+  std::vector<int> size(static_cast<std::size_t>(cells), 0);
+  for (int t = 0; t < cells; ++t) ++size[static_cast<std::size_t>(uf.find(t))];
+  std::map<int, std::set<int>> groups;
+  for (int t = 0; t < cells; ++t)
+    if (const int root = uf.find(t); size[static_cast<std::size_t>(root)] > 1) vertices_of(t, groups[root]);
+  return groups;
+}
+
+// The simplices found so far, to tell a cluster's new subsets from them
+// (built only when there are clusters: degenerate input).
+template <int D>
+std::set<Index<D>> simplices_of(const std::vector<Candidate<D>>& out) {
+  std::set<Index<D>> seen;
+  for (const Candidate<D>& c : out) seen.insert(c.s);
+  return seen;
+}
+
 // All k-subsets of each cluster's vertex set that are not Delaunay simplices,
 // with an O(N) profile each (degenerate input only).
 template <int D>
@@ -320,7 +344,8 @@ void add_cluster_subsets(const Input<D>& in, const std::map<int, std::set<int>>&
 // Every simplex with an empty touching ball (c'1 ≥ 0), 2D.
 std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  using Fb = CGAL::Triangulation_face_base_with_info_2<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
   using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
   std::vector<std::pair<K::Point_2, int>> pts;
   for (int i = 0; i < static_cast<int>(in.P.size()); ++i) pts.emplace_back(GammaTraits<2>::cg(in.P[i]), i);
@@ -338,7 +363,6 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
     }
     return out;
   }
-  std::set<Index<2>> seen;
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
     const auto f = e->first;
     const int i = e->second;
@@ -346,24 +370,28 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
     const auto opp = f->vertex(i), mir = dt.mirror_vertex(f, i);
     out.push_back({s, delaunay_profile(in, s, {dt.is_infinite(opp) ? -1 : opp->info(),
                                                dt.is_infinite(mir) ? -1 : mir->info()})});
-    seen.insert(s);
   }
   // Co-circular clusters: every chord of an empty circle has an empty disc.
   Clusters uf;
-  std::map<DT::Face_handle, int> number;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) number[f] = uf.add();
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+  std::vector<DT::Face_handle> faces;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    f->info() = uf.add();
+    faces.push_back(f);
+  }
+  for (const auto f : faces)
     for (int i = 0; i < 3; ++i) {
       const auto g = f->neighbor(i);
       if (dt.is_infinite(g)) continue;
       const auto v = dt.mirror_vertex(f, i);
       if (CGAL::side_of_oriented_circle(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(),
                                         v->point()) == CGAL::ON_ORIENTED_BOUNDARY)
-        uf.join(number[f], number[g]);
+        uf.join(f->info(), g->info());
     }
-  std::map<int, std::set<int>> groups;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
-    for (int i = 0; i < 3; ++i) groups[uf.find(number[f])].insert(f->vertex(i)->info());
+  const auto groups = cluster_groups(uf, static_cast<int>(faces.size()), [&](int t, std::set<int>& vs) {
+    for (int i = 0; i < 3; ++i) vs.insert(faces[static_cast<std::size_t>(t)]->vertex(i)->info());
+  });
+  if (groups.empty()) return out;
+  std::set<Index<2>> seen = simplices_of(out);
   add_cluster_subsets<2>(in, groups, seen, out);
   return out;
 }
@@ -371,13 +399,13 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
 // Every simplex with an empty touching ball (c'1 ≥ 0), 3D.
 std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-  using Tds = CGAL::Triangulation_data_structure_3<Vb>;
+  using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
   using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
   std::vector<std::pair<K::Point_3, int>> pts;
   for (int i = 0; i < static_cast<int>(in.P.size()); ++i) pts.emplace_back(GammaTraits<3>::cg(in.P[i]), i);
   DT dt(pts.begin(), pts.end());
   std::vector<Candidate<3>> out;
-  std::set<Index<3>> seen;
   if (dt.dimension() < 3) {  // coplanar input: every triple, O(N^4)
     if (in.P.size() > 200)
       throw InvalidInput("gamma graph: 3D input is coplanar (" + std::to_string(in.P.size()) +
@@ -401,13 +429,15 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
     const auto opp = c->vertex(i), mir = dt.mirror_vertex(c, i);
     out.push_back({s, delaunay_profile(in, s, {dt.is_infinite(opp) ? -1 : opp->info(),
                                                dt.is_infinite(mir) ? -1 : mir->info()})});
-    seen.insert(s);
   }
   // Clusters: finite cells on one empty sphere; hull facets in one plane.
   Clusters uf;
-  std::map<DT::Cell_handle, int> number;
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) number[c] = uf.add();
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
+  std::vector<DT::Cell_handle> cells;
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    c->info() = uf.add();
+    cells.push_back(c);
+  }
+  for (const auto c : cells)
     for (int i = 0; i < 4; ++i) {
       const auto g = c->neighbor(i);
       const auto v = dt.mirror_vertex(c, i);
@@ -420,12 +450,15 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
       const bool same = dt.is_infinite(c) ? CGAL::orientation(p[0], p[1], p[2], v->point()) == CGAL::COPLANAR
                                           : CGAL::side_of_oriented_sphere(p[0], p[1], p[2], p[3], v->point()) ==
                                                 CGAL::ON_ORIENTED_BOUNDARY;
-      if (same) uf.join(number[c], number[g]);
+      if (same) uf.join(c->info(), g->info());
     }
-  std::map<int, std::set<int>> groups;
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
+  const auto groups = cluster_groups(uf, static_cast<int>(cells.size()), [&](int t, std::set<int>& vs) {
+    const auto c = cells[static_cast<std::size_t>(t)];
     for (int i = 0; i < 4; ++i)
-      if (!dt.is_infinite(c->vertex(i))) groups[uf.find(number[c])].insert(c->vertex(i)->info());
+      if (!dt.is_infinite(c->vertex(i))) vs.insert(c->vertex(i)->info());
+  });
+  if (groups.empty()) return out;
+  std::set<Index<3>> seen = simplices_of(out);
   // A coplanar hull group of 4 points has two facets but only 4 vertices.
   for (auto& [root, vs] : groups)
     if (vs.size() == 4) {
