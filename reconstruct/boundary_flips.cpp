@@ -16,10 +16,6 @@ namespace {
 
 using Triangle = BoundarySurface::Triangle;
 
-// Vertices of the face opposite local vertex i, counter-clockwise seen from
-// outside a positively oriented tetrahedron (as in constriction).
-constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
 // The measures both criteria read off an edge (a, b) between the faces
 // (a, b, c) and (b, a, d).
 double area(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {

@@ -30,6 +30,10 @@ struct DelaunayComplex {
   Cells neighbors;
 };
 
+/// 3D: the vertices of the face of a cell opposite its local vertex i,
+/// counter-clockwise seen from outside the (positively oriented) cell.
+inline constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
 /// Builds the Delaunay triangulation with CGAL (exact predicates; points
 /// inserted in spatial order). A repeated row is inserted once: the cells then
 /// index one of its copies (in 2D its first occurrence; in 3D whichever came
