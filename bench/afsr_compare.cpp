@@ -3,7 +3,7 @@
 // (their original triangles are the known answer).
 //
 //   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton]
-//                            [--cell-flips on|off] [--flips area|area-then-delaunay|off] [--unfold on|off] [--carve-gaps on|off]
+//                            [--cell-flips on|off] [--flips area|area-then-delaunay|off] [--unfold on|off] [--carve-gaps on|off] [--carve-webs on|off]
 //                            [--genus0] [--no-afsr] MESH.off ...
 //
 // --genus0 keeps the meshes whose own triangles form one closed (orientable)
@@ -145,6 +145,8 @@ static int run(int argc, char** argv) {
       if (flips == "off") options.flips.reset();
     } else if (std::string(argv[a]) == "--carve-gaps" && a + 1 < argc) {
       if (std::string(argv[++a]) == "on") options.gaps = GapOptions{};
+    } else if (std::string(argv[a]) == "--carve-webs" && a + 1 < argc) {
+      if (std::string(argv[++a]) == "off") options.webs.reset();
     } else if (std::string(argv[a]) == "--cell-flips" && a + 1 < argc) {
       options.cell_flips = std::string(argv[++a]) == "on";
     } else if (std::string(argv[a]) == "--unfold" && a + 1 < argc) {

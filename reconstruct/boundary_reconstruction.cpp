@@ -232,15 +232,23 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
                     SurfaceReconstruction& out) {
   BoundaryStatistics& s = out.statistics;
   s.guide_faces = c.guide_faces;
+  // Both before augmentation: they need a boundary of cells. Every cell left
+  // outside counts as removed, those these passes took out too.
+  const auto renew = [&] {
+    Constriction<3> changed = pruned_boundary(dt, std::move(c.kept));
+    changed.guide_faces = c.guide_faces;
+    c = std::move(changed);
+  };
+  if (options.webs) {
+    const auto start = std::chrono::steady_clock::now();
+    s.web_cells = carve_webs(dt, c.kept, c.boundary, options.constriction.keep, *options.webs);
+    if (s.web_cells > 0) renew();
+    s.constriction_seconds += seconds_since(start);
+  }
   if (options.cell_flips) {
-    // Before augmentation: these flips need a boundary of cells.
     const auto start = std::chrono::steady_clock::now();
     s.cell_flips = flip_delaunay_cells(dt, c.kept, options.constriction.keep);
-    if (s.cell_flips > 0) {  // every cell left outside counts as removed, those the flips took out too
-      Constriction<3> flipped = pruned_boundary(dt, std::move(c.kept));
-      flipped.guide_faces = c.guide_faces;
-      c = std::move(flipped);
-    }
+    if (s.cell_flips > 0) renew();
     s.flip_seconds = seconds_since(start);
   }
   out.mesh.faces = c.boundary;

@@ -9,6 +9,7 @@
 #include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
 #include "reconstruct/gap_carving.h"
+#include "reconstruct/web_carving.h"
 #include "reconstruct/line_of_sight.h"
 #include "reconstruct/unfold_boundary.h"
 #include "reconstruct/voronoi_skeleton.h"
@@ -69,6 +70,11 @@ struct ReconstructionOptions {
   /// sight (reconstruct/gap_carving.h); nullopt (default): not. Not done by
   /// the incremental repair (docs/design.md, "Gap carving").
   std::optional<GapOptions> gaps;
+  /// 3D: right after constriction, remove the webs, sheets of kept cells
+  /// spanning a gap between two parts, each as a whole where the boundary
+  /// stays a sphere through every point (reconstruct/web_carving.h; done by
+  /// the incremental repair's final surface too); nullopt: keep them.
+  std::optional<WebOptions> webs = WebOptions{};
 };
 
 struct BoundaryStatistics {
@@ -91,6 +97,7 @@ struct BoundaryStatistics {
   std::size_t guide_faces = 0;            ///< faces kept by γ-guided constriction
   std::size_t sight_line_cells = 0;       ///< Delaunay cells crossed by the lines of sight
   std::size_t gap_cells = 0;              ///< Delaunay cells found in gaps, carved first
+  std::size_t web_cells = 0;              ///< kept Delaunay cells removed with webs after constriction
   double flip_seconds = 0.0;
   double unfold_seconds = 0.0;
   double delaunay_seconds = 0.0;

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "reconstruct/line_of_sight.h"
+#include "reconstruct/surface_link.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -60,32 +61,9 @@ constexpr int kSkinLayers = 2;
 // vertex's share, 0 for a point off the boundary.
 int euler_share(int f) { return f > 0 ? 6 - f : 0; }
 
-// The link of a boundary vertex (one edge per boundary triangle at it; its
-// ends as vertex handles, compared without reading the vertices) is a
-// single cycle: the surface is a 2-manifold there.
+// The link of a boundary vertex (reconstruct/surface_link.h), its ends as
+// vertex handles, compared without reading the vertices.
 using LinkEdge = std::array<Vertex, 2>;
-bool single_cycle(std::span<const LinkEdge> link) {
-  if (link.empty()) return true;
-  for (const auto& e : link)
-    for (const Vertex end : e) {
-      int degree = 0;
-      for (const auto& g : link) degree += (g[0] == end) + (g[1] == end);
-      if (degree != 2) return false;
-    }
-  // Every link vertex has degree 2: a union of cycles; walk the first one.
-  std::size_t length = 0;
-  Vertex previous = link[0][0], at = link[0][1];
-  do {
-    ++length;
-    for (const auto& g : link)
-      if ((g[0] == at && g[1] != previous) || (g[1] == at && g[0] != previous)) {
-        previous = at;
-        at = g[0] == at ? g[1] : g[0];
-        break;
-      }
-  } while (at != link[0][1] && length <= link.size());
-  return length == link.size();
-}
 
 // The complex of one repair: first the cells to re-decide, then the cells
 // around them (kept ones frozen, removed ones as the outside they are).

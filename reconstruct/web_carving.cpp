@@ -1,0 +1,418 @@
+#include "reconstruct/web_carving.h"
+
+#include "core/errors.h"
+#include "reconstruct/surface_link.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace scanstation {
+
+namespace {
+
+using Triangle = std::array<int, 3>;
+
+Triangle sorted_face(const DelaunayComplex<3>& dt, int c, int i) {
+  Triangle t{dt.cells(c, kFace3[i][0]), dt.cells(c, kFace3[i][1]), dt.cells(c, kFace3[i][2])};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+class WebCarver {
+ public:
+  WebCarver(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixXi& keep, const WebOptions& options)
+      : dt_(dt), kept_(kept), options_(options), width_(options.faces.width * options.faces.width) {
+    if (options.faces.neighbour < 1) throw InvalidInput("web carving: the spacing neighbour must be at least 1");
+    if (!(options.faces.width > 0)) throw InvalidInput("web carving: the width factor must be positive");
+    if (keep.rows() > 0 && keep.cols() != 3) throw InvalidInput("kept faces need 3 vertex indices each");
+    for (Eigen::Index k = 0; k < keep.rows(); ++k) {
+      Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
+      std::sort(t.begin(), t.end());
+      keep_.push_back(t);
+    }
+    std::sort(keep_.begin(), keep_.end());
+  }
+
+  std::size_t run(const Eigen::MatrixX3i& boundary) {
+    const std::vector<std::vector<int>> webs = find_webs(boundary);
+    if (webs.empty()) return 0;
+    around_.emplace(dt_);
+    const auto cells = static_cast<std::size_t>(dt_.cells.rows());
+    const auto points = static_cast<std::size_t>(dt_.points.rows());
+    mark_.assign(cells, 0);
+    part_.assign(cells, -1);
+    point_mark_.assign(points, 0);
+    share_before_.assign(points, 0);
+    std::vector<int> carved;
+    for (const std::vector<int>& web : webs) {
+      std::vector<int> members = web;  // less what an earlier sheet's repairs took
+      std::erase_if(members, [&](int c) { return !kept_[static_cast<std::size_t>(c)]; });
+      if (members.empty()) continue;
+      for (int round = 0; round <= options_.pillar_rounds; ++round) {
+        if (try_remove(members)) {
+          // A cell given back by one repair may be cut by a later one.
+          std::sort(gone_.begin(), gone_.end());
+          gone_.erase(std::unique(gone_.begin(), gone_.end()), gone_.end());
+          for (const int c : gone_)
+            if (!kept_[static_cast<std::size_t>(c)]) carved.push_back(c);
+          break;
+        }
+        if (!add_pillars(members)) break;
+      }
+    }
+    if (!connected()) {  // never seen; the checks above are local
+      for (const int c : carved) kept_[static_cast<std::size_t>(c)] = 1;
+      return 0;
+    }
+    return carved.size();
+  }
+
+ private:
+  bool is_kept(int c) const { return c >= 0 && kept_[static_cast<std::size_t>(c)]; }
+
+  Eigen::Vector3d point(int v) const { return dt_.points.row(v).transpose(); }
+
+  // The spacing of GapOptions at v (squared), from the Delaunay edges at v,
+  // found by a walk over the cells around v; computed on first use: most
+  // points are never asked (see find_webs).
+  double spacing_at(int v) {
+    double& known = spacing_[static_cast<std::size_t>(v)];
+    if (known >= 0) return known;
+    walk_star(v);
+    lengths_.clear();
+    for (const int c : star_)
+      for (int i = 0; i < 4; ++i)
+        if (const int w = dt_.cells(c, i); w != v) lengths_.push_back((point(w) - point(v)).squaredNorm());
+    std::sort(lengths_.begin(), lengths_.end());
+    lengths_.erase(std::unique(lengths_.begin(), lengths_.end()), lengths_.end());
+    known = lengths_.empty() ? 0.0 : lengths_[std::min(lengths_.size(), static_cast<std::size_t>(options_.faces.neighbour)) - 1];
+    return known;
+  }
+
+  // GapOptions' wide-face test for face i of cell c.
+  bool wide(int c, int i) {
+    const int* f = kFace3[i];
+    const int a = dt_.cells(c, f[0]), b = dt_.cells(c, f[1]), d = dt_.cells(c, f[2]);
+    return wider_than(point(a), point(b), point(d), std::max({spacing_at(a), spacing_at(b), spacing_at(d)}), width_);
+  }
+
+  // The sheets: kept cells reached from a wide boundary face through wide
+  // faces only, joined through those faces; each of at least min_cells.
+  // The spacing needs the Delaunay edges at a point, a sweep over all cells
+  // when done for every point (0.8 s of a million points'), so boundary
+  // faces are screened first with the spacing read off the boundary itself
+  // (the second shortest distinct boundary edge at each corner, at most the
+  // Delaunay spacing wherever a point has five Delaunay edges no longer
+  // than that one): on a smooth sample no face passes, and the full test
+  // runs on a few faces only.
+  std::vector<std::vector<int>> find_webs(const Eigen::MatrixX3i& boundary) {
+    const auto points = static_cast<std::size_t>(dt_.points.rows());
+    std::vector<std::array<double, 2>> shortest(points, {kInfinity, kInfinity});
+    std::vector<double> longest(static_cast<std::size_t>(boundary.rows()), 0.0);  // per face, its longest edge
+    for (Eigen::Index f = 0; f < boundary.rows(); ++f)
+      for (int e = 0; e < 3; ++e) {
+        const int a = boundary(f, e), b = boundary(f, (e + 1) % 3);
+        const double length = (point(a) - point(b)).squaredNorm();
+        longest[static_cast<std::size_t>(f)] = std::max(longest[static_cast<std::size_t>(f)], length);
+        for (const int v : {a, b}) {
+          auto& s = shortest[static_cast<std::size_t>(v)];
+          if (length < s[0]) s = {length, s[0]};
+          else if (length > s[0] && length < s[1]) s[1] = length;
+        }
+      }
+    const auto screen = [&](int v) {
+      const auto& s = shortest[static_cast<std::size_t>(v)];
+      return std::isfinite(s[1]) ? s[1] : s[0];
+    };
+    spacing_.assign(points, -1.0);
+    std::vector<char> taken(static_cast<std::size_t>(dt_.cells.rows()), 0);
+    std::vector<std::vector<int>> webs;
+    for (Eigen::Index f = 0; f < boundary.rows(); ++f) {
+      const int a = boundary(f, 0), b = boundary(f, 1), d = boundary(f, 2);
+      const double local = std::max({screen(a), screen(b), screen(d)});
+      // The smallest ball's radius is at most the longest edge over √3.
+      if (longest[static_cast<std::size_t>(f)] <= 3.0 * width_ * local ||
+          !wider_than(point(a), point(b), point(d), local, width_))
+        continue;
+      const auto [c, i] = kept_cell_of(a, b, d);
+      if (c < 0 || taken[static_cast<std::size_t>(c)] || !wide(c, i)) continue;
+      std::vector<int> members{c};
+      taken[static_cast<std::size_t>(c)] = 1;
+      for (std::size_t k = 0; k < members.size(); ++k)
+        for (int j = 0; j < 4; ++j) {
+          const int n = dt_.neighbors(members[k], j);
+          if (is_kept(n) && !taken[static_cast<std::size_t>(n)] && wide(members[k], j)) {
+            taken[static_cast<std::size_t>(n)] = 1;
+            members.push_back(n);
+          }
+        }
+      if (members.size() >= static_cast<std::size_t>(std::max(options_.min_cells, 1))) webs.push_back(std::move(members));
+    }
+    return webs;
+  }
+
+  // The cells around v, by a walk across the faces at v, into star_.
+  void walk_star(int v) {
+    if (cell_of_.empty()) {
+      cell_of_.assign(static_cast<std::size_t>(dt_.points.rows()), -1);
+      for (Eigen::Index c = 0; c < dt_.cells.rows(); ++c)
+        for (int k = 0; k < 4; ++k) cell_of_[static_cast<std::size_t>(dt_.cells(c, k))] = static_cast<int>(c);
+    }
+    star_.assign(1, cell_of_[static_cast<std::size_t>(v)]);
+    for (std::size_t k = 0; k < star_.size(); ++k)
+      for (int i = 0; i < 4; ++i) {
+        if (dt_.cells(star_[k], i) == v) continue;
+        const int n = dt_.neighbors(star_[k], i);  // across a face holding v
+        if (n >= 0 && std::find(star_.begin(), star_.end(), n) == star_.end()) star_.push_back(n);
+      }
+  }
+
+  // The kept cell with the boundary face abd, and the face's index in it;
+  // {−1, −1} when there is none.
+  std::pair<int, int> kept_cell_of(int a, int b, int d) {
+    walk_star(a);
+    for (const int c : star_) {
+      if (!kept_[static_cast<std::size_t>(c)]) continue;
+      for (int i = 0; i < 4; ++i) {
+        const int w = dt_.cells(c, i);
+        if (w != a && w != b && w != d && !is_kept(dt_.neighbors(c, i))) {
+          int hits = 0;
+          for (int k = 0; k < 4; ++k) hits += dt_.cells(c, k) == b || dt_.cells(c, k) == d;
+          if (hits == 2) return {c, i};
+        }
+      }
+    }
+    return {-1, -1};
+  }
+
+  // The boundary triangles at v (their edges opposite v) into link_;
+  // whether v lies in a kept cell.
+  bool link_at(int v) {
+    link_.clear();
+    bool solid = false;
+    for (const int a : (*around_)[static_cast<std::size_t>(v)]) {
+      if (!kept_[static_cast<std::size_t>(a)]) continue;
+      solid = true;
+      int at = 0;
+      while (dt_.cells(a, at) != v) ++at;
+      for (int i = 0; i < 4; ++i) {
+        if (i == at || is_kept(dt_.neighbors(a, i))) continue;
+        std::array<int, 2> e{};
+        for (int t = 0, m = 0; t < 4; ++t)
+          if (t != i && t != at) e[static_cast<std::size_t>(m++)] = dt_.cells(a, t);
+        link_.push_back(e);
+      }
+    }
+    return solid;
+  }
+
+  // Six times v's share of the Euler characteristic, 1 − f(v)/6 (0 off the
+  // boundary): Σ over the boundary points is 6χ for a closed 2-manifold.
+  static long share(std::size_t f) { return f > 0 ? 6 - static_cast<long>(f) : 0; }
+
+  // Removes cells in this attempt, recording the shares of their points
+  // before the first of their cells goes.
+  void take(const std::vector<int>& cells) {
+    for (const int c : cells)
+      for (int j = 0; j < 4; ++j) {
+        const int v = dt_.cells(c, j);
+        if (point_mark_[static_cast<std::size_t>(v)] == attempt_) continue;
+        point_mark_[static_cast<std::size_t>(v)] = attempt_;
+        points_.push_back(v);
+        link_at(v);
+        share_before_[static_cast<std::size_t>(v)] = share(link_.size());
+      }
+    for (const int c : cells) {
+      kept_[static_cast<std::size_t>(c)] = 0;
+      mark_[static_cast<std::size_t>(c)] = attempt_;
+      gone_.push_back(c);
+    }
+  }
+
+  // The cells around v whose kept flag is `solid`, in parts joined through
+  // faces at v.
+  std::vector<std::vector<int>> parts_at(int v, bool solid) {
+    std::vector<int> here;
+    for (const int a : (*around_)[static_cast<std::size_t>(v)])
+      if ((kept_[static_cast<std::size_t>(a)] != 0) == solid) here.push_back(a);
+    std::vector<std::vector<int>> parts;
+    for (const int a : here) {
+      if (part_[static_cast<std::size_t>(a)] >= 0) continue;
+      const int id = static_cast<int>(parts.size());
+      parts.emplace_back(1, a);
+      part_[static_cast<std::size_t>(a)] = id;
+      for (std::size_t k = 0; k < parts.back().size(); ++k) {
+        const int x = parts.back()[k];
+        for (int i = 0; i < 4; ++i) {
+          if (dt_.cells(x, i) == v) continue;  // the face opposite v does not hold it
+          const int n = dt_.neighbors(x, i);
+          if (n >= 0 && (kept_[static_cast<std::size_t>(n)] != 0) == solid && part_[static_cast<std::size_t>(n)] < 0) {
+            part_[static_cast<std::size_t>(n)] = id;
+            parts.back().push_back(n);
+          }
+        }
+      }
+    }
+    for (const int a : here) part_[static_cast<std::size_t>(a)] = -1;
+    return parts;
+  }
+
+  static std::size_t largest(const std::vector<std::vector<int>>& parts) {
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < parts.size(); ++k)
+      if (parts[k].size() > parts[best].size()) best = k;
+    return best;
+  }
+
+  // One round of repairs at the pinched points; false when none applies.
+  bool repair(const std::vector<int>& pinched) {
+    std::vector<int> cut, back;
+    for (const int v : pinched) {
+      const auto solid = parts_at(v, true);
+      if (solid.size() >= 2) {
+        const std::size_t keep = largest(solid);
+        for (std::size_t k = 0; k < solid.size(); ++k)
+          if (k != keep) cut.insert(cut.end(), solid[k].begin(), solid[k].end());
+        continue;
+      }
+      const auto open = parts_at(v, false);
+      if (open.size() < 2) continue;
+      const std::size_t keep = largest(open);
+      for (std::size_t k = 0; k < open.size(); ++k)
+        if (k != keep)
+          for (const int a : open[k])
+            if (mark_[static_cast<std::size_t>(a)] == attempt_) back.push_back(a);
+    }
+    for (const int a : back) kept_[static_cast<std::size_t>(a)] = 1;
+    std::sort(cut.begin(), cut.end());
+    cut.erase(std::unique(cut.begin(), cut.end()), cut.end());
+    std::erase_if(cut, [&](int c) { return !kept_[static_cast<std::size_t>(c)]; });
+    take(cut);
+    return !cut.empty() || !back.empty();
+  }
+
+  // Removes `members` (with repairs) when the boundary stays a sphere
+  // through the same points (see carve_webs); else leaves everything as it
+  // was.
+  bool try_remove(const std::vector<int>& members) {
+    ++attempt_;
+    points_.clear();
+    gone_.clear();
+    take(members);
+    bool lost = false;
+    std::vector<int> pinched;
+    for (int round = 0;; ++round) {
+      pinched.clear();
+      for (const int v : points_) {
+        if (!link_at(v)) {
+          lost = true;
+          break;
+        }
+        if (!single_cycle(std::span<const std::array<int, 2>>(link_))) pinched.push_back(v);
+      }
+      if (lost || pinched.empty() || round >= options_.repair_rounds || !repair(pinched)) break;
+    }
+    bool ok = !lost && pinched.empty() && !holds_kept_face();
+    if (ok) {
+      long change = 0;
+      for (const int v : points_) {
+        link_at(v);
+        change += share(link_.size()) - share_before_[static_cast<std::size_t>(v)];
+      }
+      ok = change == 0;
+    }
+    if (!ok)
+      for (const int c : gone_) kept_[static_cast<std::size_t>(c)] = 1;
+    return ok;
+  }
+
+  // Whether a removed cell of this attempt holds a face that must stay.
+  bool holds_kept_face() const {
+    if (keep_.empty()) return false;
+    for (const int c : gone_)
+      if (!kept_[static_cast<std::size_t>(c)])
+        for (int i = 0; i < 4; ++i)
+          if (std::binary_search(keep_.begin(), keep_.end(), sorted_face(dt_, c, i))) return true;
+    return false;
+  }
+
+  // Adds the thin kept cells next to `members`: two or more faces towards
+  // removed cells or members. False when there are none.
+  bool add_pillars(std::vector<int>& members) {
+    ++attempt_;
+    for (const int c : members) mark_[static_cast<std::size_t>(c)] = attempt_;
+    const std::size_t size = members.size();
+    for (std::size_t k = 0; k < size; ++k)
+      for (int i = 0; i < 4; ++i) {
+        const int n = dt_.neighbors(members[k], i);
+        if (!is_kept(n) || mark_[static_cast<std::size_t>(n)] == attempt_) continue;
+        int open = 0;
+        for (int j = 0; j < 4; ++j) {
+          const int g = dt_.neighbors(n, j);
+          open += !is_kept(g) || mark_[static_cast<std::size_t>(g)] == attempt_;
+        }
+        if (open >= 2) {
+          mark_[static_cast<std::size_t>(n)] = attempt_;
+          members.push_back(n);
+        }
+      }
+    return members.size() > size;
+  }
+
+  // The kept cells are joined through faces.
+  bool connected() const {
+    std::vector<char> reached(kept_.size(), 0);
+    std::vector<int> queue;
+    const auto first = std::find(kept_.begin(), kept_.end(), 1);
+    if (first == kept_.end()) return true;
+    queue.push_back(static_cast<int>(first - kept_.begin()));
+    reached[static_cast<std::size_t>(queue[0])] = 1;
+    for (std::size_t k = 0; k < queue.size(); ++k)
+      for (int i = 0; i < 4; ++i) {
+        const int n = dt_.neighbors(queue[k], i);
+        if (is_kept(n) && !reached[static_cast<std::size_t>(n)]) {
+          reached[static_cast<std::size_t>(n)] = 1;
+          queue.push_back(n);
+        }
+      }
+    return queue.size() == static_cast<std::size_t>(std::count(kept_.begin(), kept_.end(), 1));
+  }
+
+  const DelaunayComplex<3>& dt_;
+  std::vector<char>& kept_;
+  const WebOptions& options_;
+  const double width_;             // squared
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::vector<double> spacing_;    // squared, per point; −1: not known yet
+  std::vector<int> cell_of_;       // per point, a cell around it (once the spacing is asked)
+  std::vector<int> star_;          // scratch of spacing_at
+  std::vector<double> lengths_;    // scratch of spacing_at
+  std::vector<Triangle> keep_;  // sorted
+  std::optional<CellsAround> around_;
+  int attempt_ = 0;
+  std::vector<int> mark_;         // per cell: the attempt that removed it (or marked it a member)
+  std::vector<int> part_;         // scratch of parts_at, −1 between calls
+  std::vector<int> point_mark_;   // per point: the attempt that recorded its share
+  std::vector<long> share_before_;
+  std::vector<int> points_, gone_;  // this attempt's points and removed cells
+  std::vector<std::array<int, 2>> link_;
+};
+
+}  // namespace
+
+std::size_t carve_webs(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixX3i& boundary,
+                       const Eigen::MatrixXi& keep, const WebOptions& options) {
+  if (kept.size() != static_cast<std::size_t>(dt.cells.rows()))
+    throw InvalidInput("web carving: one kept flag per Delaunay cell expected, got " + std::to_string(kept.size()) +
+                       " for " + std::to_string(dt.cells.rows()) + " cells");
+  if (options.repair_rounds < 0 || options.pillar_rounds < 0)
+    throw InvalidInput("web carving: the rounds of repairs must not be negative");
+  return WebCarver(dt, kept, keep, options).run(boundary);
+}
+
+}  // namespace scanstation
