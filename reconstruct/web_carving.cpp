@@ -234,12 +234,16 @@ class WebCarver {
     }
   }
 
-  // The cells around v whose kept flag is `solid`, in parts joined through
-  // faces at v.
-  std::vector<std::vector<int>> parts_at(int v, bool solid) {
+  // The cells around v (around the edge vw when w ≥ 0) whose kept flag is
+  // `solid`, in parts joined through faces holding v (and w).
+  std::vector<std::vector<int>> parts_at(int v, bool solid, int w = -1) {
     std::vector<int> here;
-    for (const int a : (*around_)[static_cast<std::size_t>(v)])
-      if ((kept_[static_cast<std::size_t>(a)] != 0) == solid) here.push_back(a);
+    for (const int a : (*around_)[static_cast<std::size_t>(v)]) {
+      if ((kept_[static_cast<std::size_t>(a)] != 0) != solid) continue;
+      bool holds = w < 0;
+      for (int k = 0; k < 4 && !holds; ++k) holds = dt_.cells(a, k) == w;
+      if (holds) here.push_back(a);
+    }
     std::vector<std::vector<int>> parts;
     for (const int a : here) {
       if (part_[static_cast<std::size_t>(a)] >= 0) continue;
@@ -249,7 +253,7 @@ class WebCarver {
       for (std::size_t k = 0; k < parts.back().size(); ++k) {
         const int x = parts.back()[k];
         for (int i = 0; i < 4; ++i) {
-          if (dt_.cells(x, i) == v) continue;  // the face opposite v does not hold it
+          if (dt_.cells(x, i) == v || dt_.cells(x, i) == w) continue;  // that face does not hold them
           const int n = dt_.neighbors(x, i);
           if (n >= 0 && (kept_[static_cast<std::size_t>(n)] != 0) == solid && part_[static_cast<std::size_t>(n)] < 0) {
             part_[static_cast<std::size_t>(n)] = id;
@@ -269,24 +273,44 @@ class WebCarver {
     return best;
   }
 
-  // One round of repairs at the pinched points; false when none applies.
+  // The kept cells around v (or the edge vw) in several parts: all but the
+  // largest go (into `cut`); else the removed ones in several parts: the
+  // sheet's cells among all but the largest come back (into `back`).
+  // Whether either applied.
+  bool mend(int v, int w, std::vector<int>& cut, std::vector<int>& back) {
+    const auto solid = parts_at(v, true, w);
+    if (solid.size() >= 2) {
+      const std::size_t keep = largest(solid);
+      for (std::size_t k = 0; k < solid.size(); ++k)
+        if (k != keep) cut.insert(cut.end(), solid[k].begin(), solid[k].end());
+      return true;
+    }
+    const auto open = parts_at(v, false, w);
+    if (open.size() < 2) return false;
+    const std::size_t keep = largest(open);
+    const std::size_t before = back.size();
+    for (std::size_t k = 0; k < open.size(); ++k)
+      if (k != keep)
+        for (const int a : open[k])
+          if (mark_[static_cast<std::size_t>(a)] == attempt_) back.push_back(a);
+    return back.size() > before;
+  }
+
+  // One round of repairs at the pinched points, at the point itself or, when
+  // its cells are in one kept and one removed part, at the edges where the
+  // boundary meets itself (a link vertex of degree 4); false when none
+  // applies.
   bool repair(const std::vector<int>& pinched) {
     std::vector<int> cut, back;
     for (const int v : pinched) {
-      const auto solid = parts_at(v, true);
-      if (solid.size() >= 2) {
-        const std::size_t keep = largest(solid);
-        for (std::size_t k = 0; k < solid.size(); ++k)
-          if (k != keep) cut.insert(cut.end(), solid[k].begin(), solid[k].end());
-        continue;
-      }
-      const auto open = parts_at(v, false);
-      if (open.size() < 2) continue;
-      const std::size_t keep = largest(open);
-      for (std::size_t k = 0; k < open.size(); ++k)
-        if (k != keep)
-          for (const int a : open[k])
-            if (mark_[static_cast<std::size_t>(a)] == attempt_) back.push_back(a);
+      if (mend(v, -1, cut, back)) continue;
+      link_at(v);
+      for (const auto& e : link_)
+        for (const int w : e) {
+          int degree = 0;
+          for (const auto& g : link_) degree += (g[0] == w) + (g[1] == w);
+          if (degree != 2) mend(v, w, cut, back);
+        }
     }
     for (const int a : back) kept_[static_cast<std::size_t>(a)] = 1;
     std::sort(cut.begin(), cut.end());
