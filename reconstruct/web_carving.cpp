@@ -4,9 +4,9 @@
 #include "reconstruct/surface_link.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -104,12 +104,12 @@ class WebCarver {
   // The sheets: kept cells reached from a wide boundary face through wide
   // faces only, joined through those faces; each of at least min_cells.
   // The spacing needs the Delaunay edges at a point, a sweep over all cells
-  // when done for every point (0.8 s of a million points'), so boundary
-  // faces are screened first with the spacing read off the boundary itself
-  // (the second shortest distinct boundary edge at each corner, at most the
-  // Delaunay spacing wherever a point has five Delaunay edges no longer
-  // than that one): on a smooth sample no face passes, and the full test
-  // runs on a few faces only.
+  // when done for every point (0.8 s at a million points), so the boundary
+  // faces are screened first with a spacing read off the boundary itself:
+  // the second shortest distinct boundary edge at each corner, which exceeds
+  // the Delaunay spacing only where at most one of the point's five shortest
+  // distinct Delaunay edges lies on the boundary. On a smooth sample few
+  // faces pass, and the full test runs on those only.
   std::vector<std::vector<int>> find_webs(const Eigen::MatrixX3i& boundary) {
     const auto points = static_cast<std::size_t>(dt_.points.rows());
     std::vector<std::array<double, 2>> shortest(points, {kInfinity, kInfinity});
