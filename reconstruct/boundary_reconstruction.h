@@ -9,10 +9,10 @@
 #include "reconstruct/boundary_flips.h"
 #include "reconstruct/constriction.h"
 #include "reconstruct/gap_carving.h"
-#include "reconstruct/web_carving.h"
 #include "reconstruct/line_of_sight.h"
 #include "reconstruct/unfold_boundary.h"
 #include "reconstruct/voronoi_skeleton.h"
+#include "reconstruct/web_carving.h"
 
 #include <optional>
 #include <vector>

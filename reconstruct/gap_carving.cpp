@@ -35,10 +35,10 @@ double kth(const double* s, std::size_t k) {
   return 0.0;
 }
 
-}  // namespace
-
+// Per point of dt, the square of its spacing: the k-th shortest distinct
+// length of its Delaunay edges (k = neighbour ≥ 1; the longest one when it
+// has fewer). One pass over the cells.
 std::vector<double> point_spacing(const DelaunayComplex<3>& dt, int neighbour) {
-  if (neighbour < 1) throw InvalidInput("gap carving: the spacing neighbour must be at least 1");
   const auto points = static_cast<std::size_t>(dt.points.rows());
   const auto stride = static_cast<std::size_t>(neighbour);
   std::vector<double> shortest(points * stride, std::numeric_limits<double>::infinity());
@@ -63,10 +63,30 @@ std::vector<double> point_spacing(const DelaunayComplex<3>& dt, int neighbour) {
   return spacing;
 }
 
-WideFaces::WideFaces(const DelaunayComplex<3>& dt, const GapOptions& options)
-    : dt_(dt), spacing_(point_spacing(dt, options.neighbour)), width_(options.width * options.width) {
-  if (!(options.width > 0)) throw InvalidInput("gap carving: the width factor must be positive");
-}
+// The wide-face test of GapOptions: whether the smallest ball holding face i
+// of cell c (opposite its vertex i) has a radius of more than options.width
+// times the largest spacing at the face's corners.
+class WideFaces {
+ public:
+  WideFaces(const DelaunayComplex<3>& dt, const GapOptions& options)
+      : dt_(dt), spacing_(point_spacing(dt, options.neighbour)), width_(options.width * options.width) {}
+  bool operator()(Eigen::Index c, int i) const {
+    int v[3], n = 0;
+    for (int k = 0; k < 4; ++k)
+      if (k != i) v[n++] = dt_.cells(c, k);
+    const double local = std::max({spacing_[static_cast<std::size_t>(v[0])], spacing_[static_cast<std::size_t>(v[1])],
+                                   spacing_[static_cast<std::size_t>(v[2])]});
+    return wider_than(dt_.points.row(v[0]).transpose(), dt_.points.row(v[1]).transpose(),
+                      dt_.points.row(v[2]).transpose(), local, width_);
+  }
+
+ private:
+  const DelaunayComplex<3>& dt_;
+  std::vector<double> spacing_;
+  double width_;
+};
+
+}  // namespace
 
 bool wider_than(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& d, double spacing,
                 double width) {
@@ -89,17 +109,9 @@ bool wider_than(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
   return radius > width;
 }
 
-bool WideFaces::operator()(Eigen::Index c, int i) const {
-  int v[3], n = 0;
-  for (int k = 0; k < 4; ++k)
-    if (k != i) v[n++] = dt_.cells(c, k);
-  const double local = std::max({spacing_[static_cast<std::size_t>(v[0])], spacing_[static_cast<std::size_t>(v[1])],
-                                 spacing_[static_cast<std::size_t>(v[2])]});
-  return wider_than(dt_.points.row(v[0]).transpose(), dt_.points.row(v[1]).transpose(),
-                    dt_.points.row(v[2]).transpose(), local, width_);
-}
-
 std::vector<int> gap_depths(const DelaunayComplex<3>& dt, const GapOptions& options) {
+  if (options.neighbour < 1) throw InvalidInput("gap carving: the spacing neighbour must be at least 1");
+  if (!(options.width > 0)) throw InvalidInput("gap carving: the width factor must be positive");
   if (options.depth < 0) throw InvalidInput("gap carving: the least depth of a gap must not be negative");
   const WideFaces wide(dt, options);
 

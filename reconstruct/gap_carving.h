@@ -48,32 +48,11 @@ struct GapOptions {
 /// reached cells).
 std::vector<int> gap_depths(const DelaunayComplex<3>& dt, const GapOptions& options = {});
 
-/// Per point of dt, the square of its spacing: the k-th shortest distinct
-/// length of its Delaunay edges (k = neighbour ≥ 1; the longest one when it
-/// has fewer). One pass over the cells.
-std::vector<double> point_spacing(const DelaunayComplex<3>& dt, int neighbour);
-
 /// Whether the smallest ball holding the triangle abd has a squared radius
 /// of more than `width` times `spacing` (both squared; false when spacing is
 /// not positive).
 bool wider_than(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& d, double spacing,
                 double width);
-
-/// The wide-face test: whether the smallest ball holding face i of cell c
-/// (opposite its vertex i) has a radius of more than options.width times the
-/// largest spacing at the face's corners (options.neighbour). Floating
-/// point: it only chooses cells to try; every topological decision made on
-/// them stays exact.
-class WideFaces {
- public:
-  WideFaces(const DelaunayComplex<3>& dt, const GapOptions& options);
-  bool operator()(Eigen::Index c, int i) const;
-
- private:
-  const DelaunayComplex<3>& dt_;
-  std::vector<double> spacing_;
-  double width_;
-};
 
 /// The ranks for ConstrictionOptions::carve_first: the cells `first` ranks
 /// (≥ 0; e.g. the lines of sight), in its order, then the other cells `then`
