@@ -2,6 +2,7 @@
 
 #include "reconstruct/boundary_surface.h"
 #include "reconstruct/gamma_indicator.h"
+#include "reconstruct/triangle_set.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,14 +123,7 @@ class Augmenter {
  public:
   Augmenter(const Eigen::MatrixX3d& P, const PointNeighbours& adjacency, const Eigen::MatrixX3i& boundary,
             const Eigen::MatrixXi& keep)
-      : adjacency_(adjacency), surface_(P, boundary), proposed_below_(static_cast<std::size_t>(P.rows()), 0) {
-    for (Eigen::Index k = 0; k < keep.rows(); ++k) {
-      Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
-      std::sort(t.begin(), t.end());
-      keep_.push_back(t);
-    }
-    std::sort(keep_.begin(), keep_.end());
-  }
+      : adjacency_(adjacency), surface_(P, boundary), keep_(keep), proposed_below_(static_cast<std::size_t>(P.rows()), 0) {}
 
   Augmentation run(std::vector<int>& interior, const AugmentationOptions& options) {
     for (const double c0 : levels(options))
@@ -256,9 +250,7 @@ class Augmenter {
 
   Verdict verdict(int f, int v, double c0) const {
     const Triangle& t = surface_.face(f);
-    Triangle sorted = t;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::binary_search(keep_.begin(), keep_.end(), sorted)) return Verdict::drop;  // §5.7
+    if (keep_.contains(t)) return Verdict::drop;  // §5.7
     const std::vector<Triangle> fresh{{t[0], t[1], v}, {t[1], t[2], v}, {t[2], t[0], v}};
     for (const Triangle& n : fresh)
       if (!in_gamma(n[0], n[1], n[2], c0)) return Verdict::retry;
@@ -291,7 +283,7 @@ class Augmenter {
   const PointNeighbours& adjacency_;
   BoundarySurface surface_;
   std::priority_queue<Carve> heap_;
-  std::vector<Triangle> keep_;  // sorted triples
+  TriangleSet keep_;
   mutable std::unordered_map<Triangle, LensThreshold, TriangleHash> thresholds_;
   std::vector<int> proposed_below_;  // per point: faces below this id were proposed already
   std::optional<double> deepest_lens_;  // the lowest level above c0 = −1

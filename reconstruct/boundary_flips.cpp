@@ -1,6 +1,7 @@
 #include "reconstruct/boundary_flips.h"
 
 #include "reconstruct/boundary_surface.h"
+#include "reconstruct/triangle_set.h"
 
 #include <algorithm>
 #include <cmath>
@@ -72,18 +73,6 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
   return out;
 }
 
-// The §5.7 kept faces, each with its vertices sorted, in sorted order.
-std::vector<Triangle> sorted_triangles(const Eigen::MatrixXi& keep) {
-  std::vector<Triangle> out;
-  for (Eigen::Index k = 0; k < keep.rows(); ++k) {
-    Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
-    std::sort(t.begin(), t.end());
-    out.push_back(t);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 // Which flips need no exact test (see flip_boundary): every triangle of the
 // surface is a face of the Delaunay complex except the foreign ones — those
 // augmentation carved (§5.4: its tetrahedra are no cells) and those of the
@@ -135,12 +124,8 @@ class CellFlips {
 // cells: given when the surface came as the boundary of a union of Delaunay
 // cells (see flip_boundary).
 std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int, int>>& first, FlipCriterion criterion,
-                      const std::vector<Triangle>& fixed, double min_gain, CellFlips* cells) {
-  const auto is_fixed = [&](int f) {
-    Triangle t = surface.face(f);
-    std::sort(t.begin(), t.end());
-    return std::binary_search(fixed.begin(), fixed.end(), t);
-  };
+                      const TriangleSet& fixed, double min_gain, CellFlips* cells) {
+  const auto is_fixed = [&](int f) { return fixed.contains(surface.face(f)); };
   struct Candidate {
     double gain;
     int a, b;
@@ -189,7 +174,7 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
 // the complex.
 class CellToggles {
  public:
-  CellToggles(const DelaunayComplex<3>& dt, std::vector<char>& kept, std::vector<Triangle> fixed)
+  CellToggles(const DelaunayComplex<3>& dt, std::vector<char>& kept, TriangleSet fixed)
       : dt_(dt), kept_(kept), fixed_(std::move(fixed)), points_(static_cast<std::size_t>(dt.points.rows())) {
     // A point's coordinates together (the complex keeps them by column).
     for (std::size_t v = 0; v < points_.size(); ++v) points_[v] = dt.points.row(static_cast<Eigen::Index>(v)).transpose();
@@ -331,16 +316,11 @@ class CellToggles {
            !is_fixed(f.b, f.a, f.d) && !edge_on_boundary(f.cell, f.c, f.d);
   }
 
-  bool is_fixed(int a, int b, int c) const {
-    if (fixed_.empty()) return false;
-    Triangle t{a, b, c};
-    std::sort(t.begin(), t.end());
-    return std::binary_search(fixed_.begin(), fixed_.end(), t);
-  }
+  bool is_fixed(int a, int b, int c) const { return fixed_.contains(a, b, c); }
 
   const DelaunayComplex<3>& dt_;
   std::vector<char>& kept_;
-  std::vector<Triangle> fixed_;
+  TriangleSet fixed_;
   std::vector<Eigen::Vector3d> points_;
   std::vector<char> queued_;  // on the stack
   std::vector<int> stack_;
@@ -350,7 +330,7 @@ class CellToggles {
 }  // namespace
 
 std::size_t flip_delaunay_cells(const DelaunayComplex<3>& complex, std::vector<char>& kept, const Eigen::MatrixXi& keep) {
-  return CellToggles(complex, kept, sorted_triangles(keep)).run();
+  return CellToggles(complex, kept, TriangleSet(keep)).run();
 }
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
@@ -360,7 +340,7 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
   const std::vector<std::pair<int, int>> by_area = candidate_edges(points, boundary, FlipCriterion::area, min_gain);
   if (by_area.empty() && (!delaunay || candidate_edges(points, boundary, criterion, min_gain).empty())) return 0;
   BoundarySurface surface(points, boundary);
-  const std::vector<Triangle> fixed = sorted_triangles(keep);
+  const TriangleSet fixed(keep);
   std::optional<CellFlips> cell_flips;
   if (cells) {
     cell_flips.emplace(*cells, surface_grid(points));

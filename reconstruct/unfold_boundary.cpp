@@ -1,6 +1,7 @@
 #include "reconstruct/unfold_boundary.h"
 
 #include "reconstruct/boundary_surface.h"
+#include "reconstruct/triangle_set.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Polygon_2_algorithms.h>
@@ -14,7 +15,6 @@
 #include <numeric>
 #include <optional>
 #include <queue>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -80,9 +80,7 @@ struct Plane {
 class Unfolder {
  public:
   Unfolder(BoundarySurface& surface, const Eigen::MatrixX3d& P, const Eigen::MatrixXi& keep, double cos_fold)
-      : P_(P), surface_(surface), cos_fold_(cos_fold) {
-    for (Eigen::Index k = 0; k < keep.rows(); ++k) fixed_.insert(sorted({keep(k, 0), keep(k, 1), keep(k, 2)}));
-  }
+      : P_(P), surface_(surface), cos_fold_(cos_fold), fixed_(keep) {}
 
   bool folded(int a, int b, int c, int d) const { return scanstation::folded(P_, cos_fold_, a, b, c, d); }
 
@@ -105,7 +103,7 @@ class Unfolder {
     std::vector<Triangle> faces;
     for (const int f : patch) {
       faces.push_back(surface_.face(f));
-      if (fixed_.count(sorted(faces.back()))) return 0;
+      if (fixed_.contains(faces.back())) return 0;
     }
     std::vector<int> vertices;
     for (const Triangle& t : faces) vertices.insert(vertices.end(), t.begin(), t.end());
@@ -274,15 +272,10 @@ class Unfolder {
     return true;
   }
 
-  static Triangle sorted(Triangle t) {
-    std::sort(t.begin(), t.end());
-    return t;
-  }
-
   const Eigen::MatrixX3d& P_;
   BoundarySurface& surface_;
   double cos_fold_;
-  std::set<Triangle> fixed_;
+  TriangleSet fixed_;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "reconstruct/surface_link.h"
+#include "reconstruct/triangle_set.h"
 
 #include <algorithm>
 #include <array>
@@ -15,14 +16,6 @@ namespace scanstation {
 
 namespace {
 
-using Triangle = std::array<int, 3>;
-
-Triangle sorted_face(const DelaunayComplex<3>& dt, int c, int i) {
-  Triangle t{dt.cells(c, kFace3[i][0]), dt.cells(c, kFace3[i][1]), dt.cells(c, kFace3[i][2])};
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 class WebCarver {
  public:
   WebCarver(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixXi& keep, const WebOptions& options)
@@ -30,12 +23,7 @@ class WebCarver {
     if (options.faces.neighbour < 1) throw InvalidInput("web carving: the spacing neighbour must be at least 1");
     if (!(options.faces.width > 0)) throw InvalidInput("web carving: the width factor must be positive");
     if (keep.rows() > 0 && keep.cols() != 3) throw InvalidInput("kept faces need 3 vertex indices each");
-    for (Eigen::Index k = 0; k < keep.rows(); ++k) {
-      Triangle t{keep(k, 0), keep(k, 1), keep(k, 2)};
-      std::sort(t.begin(), t.end());
-      keep_.push_back(t);
-    }
-    std::sort(keep_.begin(), keep_.end());
+    keep_ = TriangleSet(keep);
   }
 
   std::size_t run(const Eigen::MatrixX3i& boundary) {
@@ -361,7 +349,8 @@ class WebCarver {
     for (const int c : gone_)
       if (!kept_[static_cast<std::size_t>(c)])
         for (int i = 0; i < 4; ++i)
-          if (std::binary_search(keep_.begin(), keep_.end(), sorted_face(dt_, c, i))) return true;
+          if (keep_.contains(dt_.cells(c, kFace3[i][0]), dt_.cells(c, kFace3[i][1]), dt_.cells(c, kFace3[i][2])))
+            return true;
     return false;
   }
 
@@ -416,7 +405,7 @@ class WebCarver {
   std::vector<int> cell_of_;       // per point, a cell around it (once the spacing is asked)
   std::vector<int> star_;          // scratch of spacing_at
   std::vector<double> lengths_;    // scratch of spacing_at
-  std::vector<Triangle> keep_;  // sorted
+  TriangleSet keep_;
   std::optional<CellsAround> around_;
   int attempt_ = 0;
   std::vector<int> mark_;         // per cell: the attempt that removed it (or marked it a member)
