@@ -141,7 +141,7 @@ static int run(int argc, char** argv) {
       noise = std::stod(argv[++a]);
     } else if (std::string(argv[a]) == "--flips" && a + 1 < argc) {
       const std::string flips = argv[++a];
-      if (flips == "area-then-delaunay") options.flips = FlipCriterion::area_then_delaunay;
+      if (flips == "area") options.flips = FlipCriterion::area;
       if (flips == "off") options.flips.reset();
     } else if (std::string(argv[a]) == "--carve-gaps" && a + 1 < argc) {
       if (std::string(argv[++a]) == "on") options.gaps = GapOptions{};

@@ -53,11 +53,11 @@ struct ReconstructionOptions {
   bool cell_flips = true;
   /// 3D: once every point is on the boundary, flip edges that lower the
   /// surface area (O'Rourke's flips, §4.3.2), and with area_then_delaunay
-  /// then towards a Delaunay surface where it is nearly flat (more true
-  /// triangles on real meshes, but a flip for about every other point of a
-  /// random sample of a convex surface, where area flips find nothing);
-  /// nullopt: keep constriction's triangles as they are.
-  std::optional<FlipCriterion> flips = FlipCriterion::area;
+  /// (default) then towards a Delaunay surface where it is nearly flat
+  /// (more true triangles on real meshes; on a random sample of a convex
+  /// surface the cell flips have made them all already, so it costs
+  /// nothing there); nullopt: keep constriction's triangles as they are.
+  std::optional<FlipCriterion> flips = FlipCriterion::area_then_delaunay;
   /// 3D: then re-triangulate flat the places where the surface folds back on
   /// itself (reconstruct/unfold_boundary.h).
   bool unfold = true;

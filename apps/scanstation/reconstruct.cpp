@@ -70,8 +70,8 @@ class ReconstructCommand final : public Command {
         ->capture_default_str();
     cli_->add_option("--flips", flips_,
                      "3D, after constriction: area (flip edges while the surface area drops, §4.3.2), "
-                     "area-then-delaunay (then Delaunay flips where the surface is nearly flat: more true triangles, "
-                     "slower on smooth convex samples) or off")
+                     "area-then-delaunay (then Delaunay flips where the surface is nearly flat: more true triangles) "
+                     "or off")
         ->check(CLI::IsMember({"area-then-delaunay", "area", "off"}))
         ->capture_default_str();
     cli_->add_option("--unfold", unfold_,
@@ -129,7 +129,7 @@ class ReconstructCommand final : public Command {
     if (svg_) io::check_writable(*svg_, context.overwrite);
     options_.constriction.until_indicator = until_;
     if (flips_ == "off") options_.flips.reset();
-    if (flips_ == "area-then-delaunay") options_.flips = FlipCriterion::area_then_delaunay;
+    if (flips_ == "area") options_.flips = FlipCriterion::area;
     options_.unfold = unfold_ == "on";
     options_.cell_flips = cell_flips_ == "on";
     if (carve_gaps_ == "on") options_.gaps = GapOptions{};
@@ -279,7 +279,7 @@ class ReconstructCommand final : public Command {
   std::string augment_ = "auto";
   std::string method_ = "auto";
   std::size_t seeds_ = VoronoiSkeletonOptions{}.max_seeds;
-  std::string flips_ = "area";
+  std::string flips_ = "area-then-delaunay";
   std::string unfold_ = "on";
   std::string cell_flips_ = "on";
   std::string carve_gaps_ = "off";

@@ -271,6 +271,7 @@ TEST(Constriction3, DelaunayFlipsKeepTheGuaranteesAndRecoverDelaunayMeshes) {
     const TriangleMesh truth = io::read_mesh(test::cgal_data("meshes/" + name + ".off"));
     ReconstructionOptions area_only = surface_defaults();
     area_only.cell_flips = false;
+    area_only.flips = FlipCriterion::area;
     ReconstructionOptions delaunay = area_only;
     delaunay.flips = FlipCriterion::area_then_delaunay;
     const SurfaceReconstruction r = reconstruct_surface(truth.vertices.positions, delaunay);
