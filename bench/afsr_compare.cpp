@@ -4,6 +4,7 @@
 //
 //   build/bench/afsr_compare [--noise 0.001] [--method gamma|min-area-change|voronoi-skeleton]
 //                            [--cell-flips on|off] [--flips area|area-then-delaunay|off] [--unfold on|off] [--carve-gaps on|off] [--carve-webs on|off]
+//                            [--guide C1,C0|off]
 //                            [--genus0] [--no-afsr] MESH.off ...
 //
 // --genus0 keeps the meshes whose own triangles form one closed (orientable)
@@ -43,6 +44,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -149,6 +151,15 @@ static int run(int argc, char** argv) {
       if (std::string(argv[++a]) == "off") options.webs.reset();
     } else if (std::string(argv[a]) == "--cell-flips" && a + 1 < argc) {
       options.cell_flips = std::string(argv[++a]) == "on";
+    } else if (std::string(argv[a]) == "--guide" && a + 1 < argc) {
+      const std::string guide = argv[++a];
+      if (guide == "off") {
+        options.guide.reset();
+      } else {
+        const auto comma = guide.find(',');
+        if (comma == std::string::npos) throw std::invalid_argument("--guide: expected C1,C0 or off, got " + guide);
+        options.guide = GuideOptions{std::stod(guide.substr(0, comma)), std::stod(guide.substr(comma + 1))};
+      }
     } else if (std::string(argv[a]) == "--unfold" && a + 1 < argc) {
       options.unfold = std::string(argv[++a]) != "off";
     } else if (std::string(argv[a]) == "--method" && a + 1 < argc) {

@@ -26,7 +26,7 @@ namespace scanstation {
 /// already shows as the object's outside (§3.4: well-chosen γ-parameters
 /// reveal the external structure).
 struct GuideOptions {
-  double c1 = 0.7;  ///< the wider ball must reach at least this γ-value
+  double c1 = 0.5;  ///< the wider ball must reach at least this γ-value
   double c0 = 0.0;  ///< and the narrower one at least this
 };
 

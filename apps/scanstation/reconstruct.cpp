@@ -284,7 +284,7 @@ class ReconstructCommand final : public Command {
   std::string cell_flips_ = "on";
   std::string carve_gaps_ = "off";
   std::string carve_webs_ = "on";
-  std::string guide_ = "0.7,0";
+  std::string guide_ = "0.5,0";
   std::optional<std::filesystem::path> keep_, interior_, viewpoints_;
   std::vector<double> viewpoint_;
 };
