@@ -70,7 +70,7 @@ void require_finite(const Eigen::MatrixXd& P) {
   if (!P.allFinite()) throw InvalidInput("points contain NaN or infinite coordinates");
 }
 
-// The Delaunay triangulation of the distinct points (unit-scaled), its
+// The Delaunay triangulation of the distinct points, scaled by `scale`, its
 // points numbered in spatial order (CGAL's vertex storage order: cells close
 // together read points close together in memory), with
 // first  per point of the complex, its input row (the first occurrence)
@@ -80,16 +80,15 @@ void require_finite(const Eigen::MatrixXd& P) {
 // 3D: merging duplicates (a hash pass) runs on the other core while CGAL
 // triangulates all rows; its insertion skips a repeated point, so that is
 // the triangulation of the distinct points.
-DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& scaled,
-                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map,
-                                     std::vector<int>& output) {
+DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, double scale, std::vector<Eigen::Index>& first,
+                                     std::vector<Eigen::Index>& map, std::vector<int>& output) {
   std::vector<Eigen::Index> first_in_order, map_in_order;
   std::thread merge([&] { unique_points(points, first_in_order, map_in_order); });
   DelaunayComplex<3> dt;
   std::vector<Eigen::Index> rows;
   std::exception_ptr failure;
   try {
-    dt = delaunay_complex(scaled, rows);
+    dt = delaunay_complex(points, rows, scale);
   } catch (...) {
     failure = std::current_exception();
   }
@@ -116,18 +115,17 @@ DelaunayComplex<3> distinct_delaunay(const Eigen::MatrixX3d& points, const Eigen
   // The copy CGAL kept may differ from the first occurrence in the sign of
   // a zero.
   if (distinct < points.rows())
-    for (std::size_t k = 0; k < rows.size(); ++k) dt.points.row(static_cast<Eigen::Index>(k)) = scaled.row(first[k]);
+    for (std::size_t k = 0; k < rows.size(); ++k) dt.points.row(static_cast<Eigen::Index>(k)) = points.row(first[k]) * scale;
   return dt;
 }
 
 // 2D: CGAL's insertion meets each repeated point at its vertex, which is all
 // the duplicate merging needed (no second pass over the points); the
 // distinct points keep the complex's order in the output.
-DelaunayComplex<2> distinct_delaunay(const Eigen::MatrixX2d&, const Eigen::MatrixX2d& scaled,
-                                     std::vector<Eigen::Index>& first, std::vector<Eigen::Index>& map,
-                                     std::vector<int>& output) {
+DelaunayComplex<2> distinct_delaunay(const Eigen::MatrixX2d& points, double scale, std::vector<Eigen::Index>& first,
+                                     std::vector<Eigen::Index>& map, std::vector<int>& output) {
   output.clear();
-  return delaunay_complex(scaled, first, map);
+  return delaunay_complex(points, first, map, scale);
 }
 
 template <int D>
@@ -145,7 +143,7 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   const auto start = std::chrono::steady_clock::now();
   Triangulated<D> out;
   const double scale = unit_scale<D>(points);
-  out.dt = distinct_delaunay(points, scale == 1.0 ? points : (points * scale).eval(), first, map, out.output);
+  out.dt = distinct_delaunay(points, scale, first, map, out.output);
   s.duplicates_merged = points.rows() - static_cast<Eigen::Index>(first.size());
   // The power of two undoes exactly.
   out.original = scale == 1.0 ? out.dt.points : (out.dt.points / scale).eval();
@@ -362,12 +360,12 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   for (std::size_t k = 0; k < out.order.size(); ++k)
     out.polygon.vertices.row(static_cast<Eigen::Index>(k)) = out.points.row(out.order[k]);
 
-  std::vector<Eigen::Index> kept;
-  for (std::size_t k = 0; k < c.kept.size(); ++k)
-    if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
-  out.interior.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  for (std::size_t k = 0; k < kept.size(); ++k) out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
-  if (s.carved > 0) out.interior.resize(0, 3);  // carved triangles overlap Delaunay cells
+  if (s.carved == 0) {  // carved triangles overlap Delaunay cells: then no interior triangulation
+    out.interior.resize(std::count_if(c.kept.begin(), c.kept.end(), [](char k) { return k != 0; }), 3);
+    Eigen::Index row = 0;
+    for (std::size_t k = 0; k < c.kept.size(); ++k)
+      if (c.kept[k]) out.interior.row(row++) = dt.cells.row(static_cast<Eigen::Index>(k));
+  }
   s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
   fill_statistics(s, dt, c);
   out.delaunay = std::move(triangulated.dt.cells);  // dt is not used after this

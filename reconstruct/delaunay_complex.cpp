@@ -71,17 +71,11 @@ void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int
 using Repeats2 = std::vector<std::pair<int, Delaunay2::Vertex_handle>>;
 
 // Numbers the distinct points as unique_points does (first occurrences in
-// input order) from what the insertion saw: each vertex holds the row that
-// created it, `repeats` the other rows and their vertices. Vertex infos
-// become indices into `first`.
+// input order) from what the insertion saw, when some rows were repeated:
+// each vertex holds the row that created it, `repeats` the other rows and
+// their vertices. Vertex infos become indices into `first`.
 void number_distinct(Delaunay2& dt, Repeats2& repeats, Eigen::Index rows, std::vector<Eigen::Index>& first,
                      std::vector<Eigen::Index>& map) {
-  first.resize(static_cast<std::size_t>(rows));
-  if (repeats.empty()) {  // the usual case: every row is a vertex and keeps its number
-    std::iota(first.begin(), first.end(), Eigen::Index{0});
-    map = first;
-    return;
-  }
   // The spatial order may meet a later copy first: the smallest row of each
   // vertex's copies stands for it (a running minimum, the rows swapped out
   // stay in `repeats`).
@@ -103,30 +97,34 @@ void number_distinct(Delaunay2& dt, Repeats2& repeats, Eigen::Index rows, std::v
 }  // namespace
 
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
-                                    std::vector<Eigen::Index>& map) {
+                                    std::vector<Eigen::Index>& map, double scale) {
   Repeats2 repeats;
   Delaunay2 dt;
   {
     std::vector<std::pair<Kernel::Point_2, int>> input;
     input.reserve(static_cast<std::size_t>(P.rows()));
-    for (Eigen::Index i = 0; i < P.rows(); ++i) input.emplace_back(Kernel::Point_2(P(i, 0), P(i, 1)), static_cast<int>(i));
+    for (Eigen::Index i = 0; i < P.rows(); ++i)
+      input.emplace_back(Kernel::Point_2(P(i, 0) * scale, P(i, 1) * scale), static_cast<int>(i));
     insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_2<Kernel, FirstOfPair<Kernel::Point_2>>>(
         dt, input, [&](int row, Delaunay2::Vertex_handle v) { repeats.emplace_back(row, v); });
   }
-  number_distinct(dt, repeats, P.rows(), first, map);
-  require_points(static_cast<Eigen::Index>(first.size()), 3, "polygon");
+  const auto distinct = repeats.empty() ? P.rows() : P.rows() - static_cast<Eigen::Index>(repeats.size());
+  require_points(distinct, 3, "polygon");
   if (dt.dimension() < 2) throw InvalidInput("all points lie on one line: no polygon encloses them");
 
   // The points renumbered in CGAL's vertex storage order, which is the
   // spatial insertion order: constriction then reads the points of nearby
   // cells from nearby memory (in input order they are scattered over the
   // whole array when the input is unordered). Coordinates are bit for bit
-  // those of the first occurrence.
+  // those of the first occurrence. No array is filled only to be
+  // overwritten: on a 1M-point input each fresh 8 MB costs about 20 ms in
+  // page faults alone on the machines measured.
   DelaunayComplex<2> out;
-  out.points.resize(static_cast<Eigen::Index>(first.size()), 2);
-  std::vector<Eigen::Index> spatial_first(first.size());
+  out.points.resize(distinct, 2);
+  std::vector<Eigen::Index> spatial_first(static_cast<std::size_t>(distinct));
   int k = 0;
-  if (repeats.empty()) {  // first and map are the identity: no lookups
+  if (repeats.empty()) {  // every row is a vertex, holding its row
+    map.resize(static_cast<std::size_t>(P.rows()));
     for (const auto v : dt.finite_vertex_handles()) {
       const auto row = static_cast<std::size_t>(v->info());
       spatial_first[static_cast<std::size_t>(k)] = static_cast<Eigen::Index>(row);
@@ -136,6 +134,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
       v->info() = k++;
     }
   } else {
+    number_distinct(dt, repeats, P.rows(), first, map);
     std::vector<Eigen::Index> renumbered(first.size());
     for (const auto v : dt.finite_vertex_handles()) {
       const auto old = static_cast<std::size_t>(v->info());
@@ -143,7 +142,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
       renumbered[old] = k;
       // From the first occurrence, not the vertex: the copy inserted first
       // may differ in the sign of a zero.
-      out.points.row(k) = P.row(first[old]);
+      out.points.row(k) = P.row(first[old]) * scale;
       v->info() = k++;
     }
     for (Eigen::Index& m : map) m = renumbered[static_cast<std::size_t>(m)];
@@ -176,12 +175,12 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P) {
   return out;
 }
 
-DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen::Index>& rows) {
+DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen::Index>& rows, double scale) {
   require_points(P.rows(), 4, "polyhedron");
   std::vector<std::pair<Kernel::Point_3, int>> input;
   input.reserve(static_cast<std::size_t>(P.rows()));
   for (Eigen::Index i = 0; i < P.rows(); ++i)
-    input.emplace_back(Kernel::Point_3(P(i, 0), P(i, 1), P(i, 2)), static_cast<int>(i));
+    input.emplace_back(Kernel::Point_3(P(i, 0) * scale, P(i, 1) * scale, P(i, 2) * scale), static_cast<int>(i));
   Delaunay3 dt;
   insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(
       dt, input, [](int, Delaunay3::Vertex_handle) {});
@@ -197,7 +196,7 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen
   int k = 0;
   for (const auto v : dt.finite_vertex_handles()) {
     rows[static_cast<std::size_t>(k)] = v->info();
-    out.points.row(k) = P.row(v->info());
+    out.points.row(k) = P.row(v->info()) * scale;
     v->info() = k++;
   }
   // Cells numbered in CGAL's storage order, infinite cells −1 (so a

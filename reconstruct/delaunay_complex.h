@@ -53,17 +53,21 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 ///        occurrence of its value)
 /// map    (output) #P entries: map[i] is the point of the complex equal to
 ///        P.row(i) (−0.0 and +0.0 count as equal)
-/// Returns the complex of the points P.row(first[k]) (cells index k). Throws
-/// InvalidInput for fewer than 3 distinct points or all points on a line.
+/// scale  a power of two the points are multiplied by (exactly) on the way
+///        in, so that no scaled copy of P is made
+/// Returns the complex of the points scale · P.row(first[k]) (cells index k).
+/// Throws InvalidInput for fewer than 3 distinct points or all points on a
+/// line.
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
-                                    std::vector<Eigen::Index>& map);
+                                    std::vector<Eigen::Index>& map, double scale = 1.0);
 
 /// 3D: the complex with its points numbered in spatial order, as above.
 /// rows  (output) per point of the complex, the row of P it is: one row per
 ///       distinct value (of a repeated row, whichever copy CGAL met first;
 ///       the others appear nowhere)
-/// Returns the complex of the points P.row(rows[k]) (cells index k).
-DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen::Index>& rows);
+/// scale as in 2D
+/// Returns the complex of the points scale · P.row(rows[k]) (cells index k).
+DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen::Index>& rows, double scale = 1.0);
 
 /// The cells around each point of a complex, by a counting sort (linear):
 /// those of v, in increasing cell order.
