@@ -145,8 +145,9 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   const double scale = unit_scale<D>(points);
   out.dt = distinct_delaunay(points, scale, first, map, out.output);
   s.duplicates_merged = points.rows() - static_cast<Eigen::Index>(first.size());
-  // The power of two undoes exactly.
-  out.original = scale == 1.0 ? out.dt.points : (out.dt.points / scale).eval();
+  // The power of two undoes exactly. Assigned as an expression: no
+  // temporary (in 2D the complex's points are row by row, the output's not).
+  out.original = out.dt.points / scale;
   s.delaunay_seconds = seconds_since(start);
   return out;
 }
@@ -296,7 +297,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   SurfaceReconstruction out;
   BoundaryStatistics& s = out.statistics;
   std::vector<Eigen::Index> map;
-  const Triangulated<3> triangulated = triangulate_distinct<3>(points, s, map, out.source);
+  Triangulated<3> triangulated = triangulate_distinct<3>(points, s, map, out.source);
   const DelaunayComplex<3>& dt = triangulated.dt;
   const ReconstructionOptions options = renumbered(given, map);
 
@@ -306,7 +307,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton)
                                                : constrict(dt, constriction);
   s.constriction_seconds = seconds_since(start);
-  out.mesh.vertices.positions = triangulated.original;
+  out.mesh.vertices.positions = std::move(triangulated.original);
   finish_surface(dt, c, options, out);
   to_output_numbering(triangulated.output, out);
   return out;
