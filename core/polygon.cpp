@@ -7,12 +7,16 @@
 
 namespace scanstation {
 
+// Relative to the bounding box's centre, as enclosed_volume (far from the
+// origin the shoelace terms cancel and their rounding swamps the area).
 double twice_signed_area(const Polygon2& polygon) {
   const Eigen::Index n = polygon.size();
+  if (n == 0) return 0.0;
+  const Eigen::RowVector2d o = 0.5 * (polygon.vertices.colwise().minCoeff() + polygon.vertices.colwise().maxCoeff());
   double sum = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const auto p = polygon.vertices.row(i);
-    const auto q = polygon.vertices.row((i + 1) % n);
+    const Eigen::RowVector2d p = polygon.vertices.row(i) - o;
+    const Eigen::RowVector2d q = polygon.vertices.row((i + 1) % n) - o;
     sum += p.x() * q.y() - q.x() * p.y();
   }
   return sum;
