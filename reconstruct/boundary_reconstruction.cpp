@@ -25,9 +25,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 // Kept faces given by input indices, renumbered to the distinct points.
-ReconstructionOptions renumbered(const ReconstructionOptions& options, const std::vector<Eigen::Index>& map) {
+// map as delaunay_complex gives it: when empty, the inverse of first.
+ReconstructionOptions renumbered(const ReconstructionOptions& options, std::vector<Eigen::Index>& map,
+                                 const std::vector<Eigen::Index>& first) {
   if (options.voronoi_skeleton && options.constriction.keep.rows() > 0)
     throw InvalidInput("faces to keep (§5.7) apply to constriction, not to the Voronoi skeleton method");
+  if (map.empty() && (options.constriction.keep.rows() > 0 || !options.sight_lines.empty())) {
+    map.resize(first.size());
+    for (std::size_t k = 0; k < first.size(); ++k) map[static_cast<std::size_t>(first[k])] = static_cast<Eigen::Index>(k);
+  }
   ReconstructionOptions out = options;
   for (Eigen::Index k = 0; k < out.constriction.keep.rows(); ++k)
     for (Eigen::Index i = 0; i < out.constriction.keep.cols(); ++i) {
@@ -77,7 +83,8 @@ void require_finite(const Points& P) {
 // points numbered in spatial order (CGAL's vertex storage order: cells close
 // together read points close together in memory), with
 // first  per point of the complex, its input row (the first occurrence)
-// map    per input row, the point of the complex equal to it
+// map    per input row, the point of the complex equal to it (2D: empty
+//        when no row repeats, see delaunay_complex)
 // output per point of the complex, its number among the distinct points in
 //        input order, as unique_points numbers them (empty: the same)
 // 3D: merging duplicates (a hash pass) runs on the other core while CGAL
@@ -302,7 +309,7 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   std::vector<Eigen::Index> map;
   Triangulated<3> triangulated = triangulate_distinct<3>(points, s, map, out.source);
   const DelaunayComplex<3>& dt = triangulated.dt;
-  const ReconstructionOptions options = renumbered(given, map);
+  const ReconstructionOptions options = renumbered(given, map, out.source);
 
   const auto start = std::chrono::steady_clock::now();
   ConstrictionOptions constriction = constriction_options(options);
@@ -323,7 +330,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   Triangulated<2> triangulated = triangulate_distinct<2>(points, s, map, out.source);
   out.points = std::move(triangulated.original);
   const DelaunayComplex<2>& dt = triangulated.dt;
-  const ReconstructionOptions options = renumbered(given, map);
+  const ReconstructionOptions options = renumbered(given, map, out.source);
 
   auto start = std::chrono::steady_clock::now();
   Constriction<2> c =

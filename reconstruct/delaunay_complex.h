@@ -52,7 +52,8 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 /// first  (output) per point of the complex, the row of P it is (the first
 ///        occurrence of its value)
 /// map    (output) #P entries: map[i] is the point of the complex equal to
-///        P.row(i) (−0.0 and +0.0 count as equal)
+///        P.row(i) (−0.0 and +0.0 count as equal); empty when no row
+///        repeats another (then map is the inverse of first)
 /// scale  a power of two the points are multiplied by (exactly) on the way
 ///        in, so that no scaled copy of P is made
 /// Returns the complex of the points scale · P.row(first[k]) (cells index k).

@@ -557,6 +557,40 @@ TEST(Constriction2, ChaliceAndFaceOutlinesGiveSimplePolygonsThroughAllPoints) {
   EXPECT_NEAR(twice_signed_area(r.polygon), twice_signed_area(chalice), 1e-9);
 }
 
+// Without repeated rows the triangulation leaves map empty (it would be
+// the inverse of first), and kept faces given by input rows still land on
+// the right points.
+TEST(Constriction2, DistinctPointsLeaveTheMapEmptyAndKeptFacesStillApply) {
+  sim::Random random(5);
+  Eigen::MatrixX2d P(300, 2);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const double a = 2 * std::numbers::pi * random.uniform();
+    P.row(i) << std::cos(a) * (1 + 0.3 * std::sin(3 * a)), std::sin(a) * (1 + 0.3 * std::sin(3 * a));
+  }
+  std::vector<Eigen::Index> first, map;
+  const DelaunayComplex<2> dt = delaunay_complex(P, first, map);
+  EXPECT_TRUE(map.empty());
+  std::vector<Eigen::Index> sorted_first = first;
+  std::sort(sorted_first.begin(), sorted_first.end());
+  for (std::size_t k = 0; k < sorted_first.size(); ++k) ASSERT_EQ(sorted_first[k], static_cast<Eigen::Index>(k));
+  EXPECT_EQ(dt.points.rows(), P.rows());
+  // Boundary edges by input rows (source), kept: renumbered through the
+  // inverse of first they must be found and stay (a wrong numbering names
+  // pairs that are no Delaunay edge, an InvalidInput).
+  const CurveReconstruction free = reconstruct_curve(P);
+  ReconstructionOptions options;
+  options.constriction.keep.resize(3, 2);
+  for (int e = 0; e < 3; ++e) {
+    const std::size_t at = static_cast<std::size_t>(e) * free.order.size() / 3;
+    options.constriction.keep(e, 0) = static_cast<int>(free.source[static_cast<std::size_t>(free.order[at])]);
+    options.constriction.keep(e, 1) =
+        static_cast<int>(free.source[static_cast<std::size_t>(free.order[(at + 1) % free.order.size()])]);
+  }
+  const CurveReconstruction r = reconstruct_curve(P, options);
+  EXPECT_EQ(r.statistics.kept_faces_on_boundary, 3u);
+  EXPECT_TRUE(r.statistics.all_on_boundary);
+}
+
 TEST(Constriction2, DuplicatesFoundByTheTriangulationAreMergedLikeUniquePoints) {
   // 2D merges duplicates inside CGAL's insertion (a repeated point meets its
   // vertex); the distinct points must be unique_points' (first occurrences,
