@@ -14,7 +14,6 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
-#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -108,7 +107,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
     insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_2<Kernel, FirstOfPair<Kernel::Point_2>>>(
         dt, input, [&](int row, Delaunay2::Vertex_handle v) { repeats.emplace_back(row, v); });
   }
-  const auto distinct = repeats.empty() ? P.rows() : P.rows() - static_cast<Eigen::Index>(repeats.size());
+  const Eigen::Index distinct = P.rows() - static_cast<Eigen::Index>(repeats.size());
   require_points(distinct, 3, "polygon");
   if (dt.dimension() < 2) throw InvalidInput("all points lie on one line: no polygon encloses them");
 
