@@ -294,7 +294,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   if (s.carved > 0 || s.flips > 0 || s.unfolded > 0) out.interior.resize(0, 4);
   s.enclosed_measure = enclosed_volume(out.mesh.vertices.positions, out.mesh.faces);
   fill_statistics(s, dt, c);
-  s.kept_faces_on_boundary = faces_on(options.constriction.keep, Eigen::MatrixXi(out.mesh.faces));
+  s.kept_faces_on_boundary = faces_on(options.constriction.keep, out.mesh.faces);
 }
 
 ReconstructionOptions surface_defaults() {
