@@ -190,8 +190,6 @@ TEST_F(RecordedSphere, ReplayGivesByteIdenticalPointsAndNewParametersOtherOnes) 
   const ScanResult same = process(session(), scratch / "same");
   EXPECT_EQ(bytes(scratch / "same" / "points.ply"), bytes(session() / "points.ply"));
   EXPECT_TRUE(same.problems.empty()) << same.problems.front();
-  std::printf("replay: capture %.2f s, processing %.3f s: %.0fx faster\n", same.capture_seconds, same.process_seconds,
-              same.capture_seconds / same.process_seconds);
   const json report = json::parse(bytes(scratch / "same" / "report.json"));
   EXPECT_EQ(report["steps"]["used"], kSteps);
   EXPECT_TRUE(report["complete"].get<bool>());
