@@ -143,6 +143,7 @@ class Augmenter {
   }
 
   Eigen::MatrixX3i boundary() const { return surface_.boundary(); }
+  BoundarySurface&& release_surface() { return std::move(surface_); }
 
   template <typename Carver>
   friend Augmentation run_levels(Carver&, std::priority_queue<Carve>&, std::vector<int>&, const AugmentationOptions&);
@@ -293,11 +294,12 @@ class Augmenter {
 
 Augmentation augment_constriction(const Eigen::MatrixX3d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
-                                  const AugmentationOptions& options) {
+                                  const AugmentationOptions& options, std::optional<BoundarySurface>* surface) {
   if (interior_vertices.empty()) return {};
   Augmenter augmenter(points, adjacency, boundary, options.keep);
   const Augmentation result = augmenter.run(interior_vertices, options);
   boundary = augmenter.boundary();
+  if (surface) surface->emplace(augmenter.release_surface());
   return result;
 }
 

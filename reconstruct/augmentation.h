@@ -15,6 +15,8 @@
 
 namespace scanstation {
 
+class BoundarySurface;
+
 struct AugmentationOptions {
   double step = 0.1;              ///< how much c0 drops per level
   double highest = -0.1;          ///< first level tried
@@ -60,6 +62,9 @@ class PointNeighbours {
 /// boundary           (in/out) #F by 3 closed, oriented, genus-0 surface,
 ///                    counter-clockwise seen from outside
 /// interior_vertices  (in/out) points not yet on the boundary
+/// surface            optional: receives the augmented surface with its
+///                    spatial index, for the flips to go on with
+///                    (flip_boundary) instead of indexing it again
 ///
 /// A carve removes the tetrahedron (a, b, c, v) behind a boundary triangle
 /// (a, b, c) and brings the interior point v to the boundary; allowed when
@@ -72,7 +77,8 @@ class PointNeighbours {
 /// γ-indicator (Definition 5.2) goes first, as in constriction.
 Augmentation augment_constriction(const Eigen::MatrixX3d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
-                                  const AugmentationOptions& options = {});
+                                  const AugmentationOptions& options = {},
+                                  std::optional<BoundarySurface>* surface = nullptr);
 
 }  // namespace scanstation
 

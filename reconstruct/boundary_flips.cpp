@@ -141,7 +141,7 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
   for (const auto& [a, b] : first) edges.push({gain_of(a, b), a, b});
   // Area flips always lower the area; Delaunay flips on a curved surface
   // have no such potential, so a budget guarantees the end.
-  std::size_t flips = 0, budget = 4 * surface.face_slots();
+  std::size_t flips = 0, budget = 4 * surface.face_count();
   while (!edges.empty() && budget-- > 0) {
     const Candidate top = edges.top();
     edges.pop();
@@ -335,11 +335,14 @@ std::size_t flip_delaunay_cells(const DelaunayComplex<3>& complex, std::vector<c
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain, const DelaunayComplex<3>* cells,
-                          std::optional<BoundarySurface>* kept_surface) {
+                          std::optional<BoundarySurface>* given) {
   const bool delaunay = criterion == FlipCriterion::area_then_delaunay;
   const std::vector<std::pair<int, int>> by_area = candidate_edges(points, boundary, FlipCriterion::area, min_gain);
   if (by_area.empty() && (!delaunay || candidate_edges(points, boundary, criterion, min_gain).empty())) return 0;
-  BoundarySurface surface(points, boundary);
+  std::optional<BoundarySurface> own;
+  std::optional<BoundarySurface>& held = given ? *given : own;
+  if (!held) held.emplace(points, boundary);
+  BoundarySurface& surface = *held;
   const TriangleSet fixed(keep);
   std::optional<CellFlips> cell_flips;
   if (cells) {
@@ -354,7 +357,6 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
     flips += flip_pass(surface, candidate_edges(points, after, criterion, min_gain), criterion, fixed, min_gain, untested);
   }
   boundary = surface.boundary();
-  if (kept_surface) kept_surface->emplace(std::move(surface));
   return flips;
 }
 

@@ -45,9 +45,11 @@ enum class FlipCriterion {
 /// cell), needs no test: its new triangles are faces of the Delaunay complex,
 /// which meet the other cell faces properly, and a Delaunay cell holds no
 /// point (the same flips as with every flip tested, faster: docs/design.md).
-/// surface  optional: receives the spatial index of the flipped surface
-///          when one was built (there were candidates), for a later step
-///          on the same surface (unfold_boundary) to go on with
+/// surface  optional: the spatial index of `boundary` over `points`, when an
+///          earlier step (augmentation) built one, flipped in place instead
+///          of a new one; when empty, it receives the index the flips built
+///          (if there were candidates), for a later step on the same surface
+///          (unfold_boundary) to go on with
 /// Returns the flips made.
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain = 1e-3,

@@ -261,16 +261,19 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
     s.flip_seconds = seconds_since(start);
   }
   out.mesh.faces = c.boundary;
+  // The surface's spatial index, built by the first step that needs one
+  // (augmentation, the flips) and handed on to the next (the flips,
+  // unfolding).
+  std::optional<BoundarySurface> surface;
   if (!c.all_on_boundary && options.augment) {
     const auto start = std::chrono::steady_clock::now();
-    const Augmentation a =
-        augment_constriction(dt.points, PointNeighbours(dt), out.mesh.faces, c.interior_vertices, options.augmentation);
+    const Augmentation a = augment_constriction(dt.points, PointNeighbours(dt), out.mesh.faces, c.interior_vertices,
+                                                options.augmentation, &surface);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
     s.carved = a.carved;
     c.all_on_boundary = c.interior_vertices.empty();
   }
-  std::optional<BoundarySurface> surface;  // the flips' spatial index, if they built one, for unfolding
   if (options.flips) {
     const auto start = std::chrono::steady_clock::now();
     s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt, &surface);

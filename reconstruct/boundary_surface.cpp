@@ -73,6 +73,7 @@ int BoundarySurface::add_face(const Triangle& t) {
   const int id = static_cast<int>(faces_.size());
   faces_.push_back(t);
   alive_.push_back(1);
+  ++alive_faces_;
   for (const int v : t) {
     faces_at_[static_cast<std::size_t>(v)].push_back(id);
     on_boundary_[static_cast<std::size_t>(v)] = 1;
@@ -83,6 +84,7 @@ int BoundarySurface::add_face(const Triangle& t) {
 
 void BoundarySurface::remove_face(int id) {
   alive_[static_cast<std::size_t>(id)] = 0;
+  --alive_faces_;
   const Triangle& t = faces_[static_cast<std::size_t>(id)];
   faces_grid_.erase(id, box({t[0], t[1], t[2]}));
   for (const int v : t) {

@@ -290,6 +290,8 @@ class BoundarySurface {
   const Triangle& face(int id) const { return faces_[static_cast<std::size_t>(id)]; }
   bool alive(int id) const { return alive_[static_cast<std::size_t>(id)] != 0; }
   std::size_t face_slots() const { return faces_.size(); }
+  /// The alive faces' count.
+  std::size_t face_count() const { return alive_faces_; }
   /// Ids of faces that used vertex v at some point (check alive()).
   const std::vector<int>& faces_at(int v) const { return faces_at_[static_cast<std::size_t>(v)]; }
   bool on_boundary(int v) const { return on_boundary_[static_cast<std::size_t>(v)] != 0; }
@@ -333,6 +335,7 @@ class BoundarySurface {
   BoxGrid faces_grid_;
   std::vector<Triangle> faces_;
   std::vector<char> alive_;
+  std::size_t alive_faces_ = 0;
   std::vector<std::vector<int>> faces_at_;
   std::vector<char> on_boundary_;
 };
