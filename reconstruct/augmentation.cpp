@@ -14,16 +14,19 @@
 namespace scanstation {
 
 template <typename Cells>
-PointNeighbours::PointNeighbours(const Cells& cells, CellsAround around)
+PointNeighbours::PointNeighbours(const Cells& cells, std::optional<CellsAround> own, const CellsAround* shared)
     : vertices_(cells.data()),
       cell_step_(Cells::IsRowMajor ? cells.outerStride() : 1),
       vertex_step_(Cells::IsRowMajor ? 1 : cells.outerStride()),
       per_cell_(static_cast<int>(cells.cols())),
-      cells_around_(std::move(around)),
-      seen_(cells_around_.start.size() - 1, 0) {}
+      own_around_(std::move(own)),
+      cells_around_(shared ? shared : &*own_around_),
+      seen_(cells_around_->start.size() - 1, 0) {}
 
-PointNeighbours::PointNeighbours(const DelaunayComplex<2>& dt) : PointNeighbours(dt.cells, CellsAround(dt)) {}
-PointNeighbours::PointNeighbours(const DelaunayComplex<3>& dt) : PointNeighbours(dt.cells, CellsAround(dt)) {}
+PointNeighbours::PointNeighbours(const DelaunayComplex<2>& dt) : PointNeighbours(dt.cells, CellsAround(dt), nullptr) {}
+PointNeighbours::PointNeighbours(const DelaunayComplex<3>& dt) : PointNeighbours(dt.cells, CellsAround(dt), nullptr) {}
+PointNeighbours::PointNeighbours(const DelaunayComplex<3>& dt, std::optional<CellsAround>& around)
+    : PointNeighbours(dt.cells, std::nullopt, around ? &*around : &around.emplace(dt)) {}
 
 std::span<const int> PointNeighbours::operator[](std::size_t v) const {
   auto [it, fresh] = lists_.try_emplace(v);
@@ -31,7 +34,7 @@ std::span<const int> PointNeighbours::operator[](std::size_t v) const {
     // Each once, in the order of the cells around v (a stamp per point
     // instead of sorting the ~7 copies of every neighbour).
     seen_[v] = v + 1;
-    for (const int c : cells_around_[v]) {
+    for (const int c : (*cells_around_)[v]) {
       const int* cell = vertices_ + c * cell_step_;
       for (int i = 0; i < per_cell_; ++i) {
         const auto u = static_cast<std::size_t>(cell[i * vertex_step_]);

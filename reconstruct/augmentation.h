@@ -41,17 +41,23 @@ class PointNeighbours {
  public:
   explicit PointNeighbours(const DelaunayComplex<2>& dt);
   explicit PointNeighbours(const DelaunayComplex<3>& dt);
+  /// With the cells around each point of dt shared with other steps: built
+  /// here if `around` is empty; it must outlive this object.
+  PointNeighbours(const DelaunayComplex<3>& dt, std::optional<CellsAround>& around);
+  PointNeighbours(const PointNeighbours&) = delete;
+  PointNeighbours& operator=(const PointNeighbours&) = delete;
   /// Valid as long as this object lives.
   std::span<const int> operator[](std::size_t v) const;
 
  private:
   template <typename Cells>
-  PointNeighbours(const Cells& cells, CellsAround around);
+  PointNeighbours(const Cells& cells, std::optional<CellsAround> own, const CellsAround* shared);
 
   const int* vertices_ = nullptr;  // the complex's cell matrix, read in place
   std::ptrdiff_t cell_step_ = 0, vertex_step_ = 0;
   int per_cell_ = 0;
-  CellsAround cells_around_;
+  std::optional<CellsAround> own_around_;  // unless shared
+  const CellsAround* cells_around_;
   mutable std::unordered_map<std::size_t, std::vector<int>> lists_;  // node-based: spans stay valid
   mutable std::vector<std::size_t> seen_;  // per point: 1 + the point whose list saw it last
 };

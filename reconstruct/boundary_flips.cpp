@@ -60,15 +60,20 @@ double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen:
   return std::max(0.0, angle(c, a, b) + angle(d, b, a) - kPi);
 }
 
-// Edges (a < b) worth a flip, found from the face list alone, so that a
-// surface with none costs two linear passes and no spatial index.
-std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F,
-                                                 FlipCriterion criterion, double min_gain) {
-  std::vector<std::pair<int, int>> out;
+// Edges (a < b) worth a flip by area and, when `delaunay`, by the Delaunay
+// rule, found in one pass over the face list alone, so that a surface with
+// none costs two linear passes and no spatial index.
+struct Candidates {
+  std::vector<std::pair<int, int>> by_area, by_delaunay;
+};
+Candidates candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, bool delaunay, double min_gain) {
+  Candidates out;
   for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) {
-    if (flip_gain(criterion, P.row(lo).transpose(), P.row(hi).transpose(), P.row(c).transpose(), P.row(d).transpose(),
-                  min_gain) > 0)
-      out.emplace_back(lo, hi);
+    const Eigen::Vector3d a = P.row(lo).transpose(), b = P.row(hi).transpose(), x = P.row(c).transpose(),
+                          y = P.row(d).transpose();
+    if (flip_gain(FlipCriterion::area, a, b, x, y, min_gain) > 0) out.by_area.emplace_back(lo, hi);
+    if (delaunay && flip_gain(FlipCriterion::area_then_delaunay, a, b, x, y, min_gain) > 0)
+      out.by_delaunay.emplace_back(lo, hi);
   });
   return out;
 }
@@ -84,7 +89,8 @@ std::vector<std::pair<int, int>> candidate_edges(const Eigen::MatrixX3d& P, cons
 // 25 per point).
 class CellFlips {
  public:
-  CellFlips(const DelaunayComplex<3>& dt, BoxGrid foreign) : dt_(dt), around_(dt), foreign_(std::move(foreign)) {}
+  CellFlips(const DelaunayComplex<3>& dt, const CellsAround& around, BoxGrid foreign)
+      : dt_(dt), around_(around), foreign_(std::move(foreign)) {}
   /// Flipping (a, b) to (c, d) adds or removes a cell far from foreign flips.
   bool toggles(int a, int b, int c, int d) const {
     if (!is_cell(a, b, c, d)) return false;
@@ -114,7 +120,7 @@ class CellFlips {
     return false;
   }
   const DelaunayComplex<3>& dt_;
-  CellsAround around_;
+  const CellsAround& around_;
   BoxGrid foreign_;
   int foreign_count_ = 0;
 };
@@ -138,7 +144,8 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
     if (f1 < 0 || f2 < 0 || c == d) return 0.0;
     return flip_gain(criterion, surface.point(a), surface.point(b), surface.point(c), surface.point(d), min_gain);
   };
-  for (const auto& [a, b] : first) edges.push({gain_of(a, b), a, b});
+  for (const auto& [a, b] : first)
+    if (const double g = gain_of(a, b); g > 0) edges.push({g, a, b});
   // Area flips always lower the area; Delaunay flips on a curved surface
   // have no such potential, so a budget guarantees the end.
   std::size_t flips = 0, budget = 4 * surface.face_count();
@@ -335,26 +342,39 @@ std::size_t flip_delaunay_cells(const DelaunayComplex<3>& complex, std::vector<c
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain, const DelaunayComplex<3>* cells,
-                          std::optional<BoundarySurface>* given) {
+                          std::optional<BoundarySurface>* given, std::optional<CellsAround>* around) {
   const bool delaunay = criterion == FlipCriterion::area_then_delaunay;
-  const std::vector<std::pair<int, int>> by_area = candidate_edges(points, boundary, FlipCriterion::area, min_gain);
-  if (by_area.empty() && (!delaunay || candidate_edges(points, boundary, criterion, min_gain).empty())) return 0;
+  Candidates candidates = candidate_edges(points, boundary, delaunay, min_gain);
+  if (candidates.by_area.empty() && candidates.by_delaunay.empty()) return 0;
   std::optional<BoundarySurface> own;
   std::optional<BoundarySurface>& held = given ? *given : own;
   if (!held) held.emplace(points, boundary);
   BoundarySurface& surface = *held;
   const TriangleSet fixed(keep);
   std::optional<CellFlips> cell_flips;
+  std::optional<CellsAround> own_around;
   if (cells) {
-    cell_flips.emplace(*cells, surface_grid(points));
+    std::optional<CellsAround>& shared = around ? *around : own_around;
+    if (!shared) shared.emplace(*cells);
+    cell_flips.emplace(*cells, *shared, surface_grid(points));
     cell_flips->add_foreign_faces(surface);
   }
   CellFlips* untested = cell_flips ? &*cell_flips : nullptr;
-  std::size_t flips = flip_pass(surface, by_area, FlipCriterion::area, fixed, min_gain, untested);
+  const std::size_t slots = surface.face_slots();
+  std::size_t flips = flip_pass(surface, candidates.by_area, FlipCriterion::area, fixed, min_gain, untested);
   if (delaunay) {
-    // The Delaunay candidates of the surface the area flips left.
-    const Eigen::MatrixX3i after = surface.boundary();
-    flips += flip_pass(surface, candidate_edges(points, after, criterion, min_gain), criterion, fixed, min_gain, untested);
+    // The Delaunay candidates of the surface the area flips left: an edge
+    // whose two faces the area flips kept has the gain it had, any other is
+    // an edge of a face they made (ids are never reused).
+    std::vector<std::pair<int, int>>& edges = candidates.by_delaunay;
+    for (std::size_t f = slots; f < surface.face_slots(); ++f) {
+      if (!surface.alive(static_cast<int>(f))) continue;
+      const Triangle& t = surface.face(static_cast<int>(f));
+      for (int k = 0; k < 3; ++k) edges.emplace_back(std::minmax(t[k], t[(k + 1) % 3]));
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    flips += flip_pass(surface, edges, criterion, fixed, min_gain, untested);
   }
   boundary = surface.boundary();
   return flips;

@@ -50,11 +50,14 @@ enum class FlipCriterion {
 ///          of a new one; when empty, it receives the index the flips built
 ///          (if there were candidates), for a later step on the same surface
 ///          (unfold_boundary) to go on with
+/// around   optional, with `cells`: the cells around each of their points,
+///          shared with the steps before (built here when empty)
 /// Returns the flips made.
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain = 1e-3,
                           const DelaunayComplex<3>* cells = nullptr,
-                          std::optional<BoundarySurface>* surface = nullptr);
+                          std::optional<BoundarySurface>* surface = nullptr,
+                          std::optional<CellsAround>* around = nullptr);
 
 /// Delaunay flips of the boundary of a union of Delaunay cells, each made by
 /// adding or removing one cell: an edge (a, b) between the boundary

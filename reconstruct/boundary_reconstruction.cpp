@@ -242,24 +242,28 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   BoundaryStatistics& s = out.statistics;
   s.guide_faces = c.guide_faces;
   // Both before augmentation: they need a boundary of cells. Every cell left
-  // outside counts as removed, those these passes took out too.
-  const auto renew = [&] {
-    Constriction<3> changed = pruned_boundary(dt, std::move(c.kept));
-    changed.guide_faces = c.guide_faces;
-    c = std::move(changed);
-  };
+  // outside counts as removed, those these passes took out too. The cell
+  // flips read the kept flags alone, so the boundary is listed again once,
+  // after both.
+  bool changed = false;
+  std::optional<CellsAround> around;  // indexed by the first step that needs it, then shared
   if (options.webs) {
     const auto start = std::chrono::steady_clock::now();
-    s.web_cells = carve_webs(dt, c.kept, c.boundary, options.constriction.keep, *options.webs);
-    if (s.web_cells > 0) renew();
+    s.web_cells = carve_webs(dt, c.kept, c.boundary, options.constriction.keep, *options.webs, &around);
+    changed = s.web_cells > 0;
     s.constriction_seconds += seconds_since(start);
   }
+  const auto start = std::chrono::steady_clock::now();
   if (options.cell_flips) {
-    const auto start = std::chrono::steady_clock::now();
     s.cell_flips = flip_delaunay_cells(dt, c.kept, options.constriction.keep);
-    if (s.cell_flips > 0) renew();
-    s.flip_seconds = seconds_since(start);
+    changed = changed || s.cell_flips > 0;
   }
+  if (changed) {
+    Constriction<3> renewed = pruned_boundary(dt, std::move(c.kept));
+    renewed.guide_faces = c.guide_faces;
+    c = std::move(renewed);
+  }
+  s.flip_seconds = seconds_since(start);
   out.mesh.faces = c.boundary;
   // The surface's spatial index, built by the first step that needs one
   // (augmentation, the flips) and handed on to the next (the flips,
@@ -267,7 +271,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   std::optional<BoundarySurface> surface;
   if (!c.all_on_boundary && options.augment) {
     const auto start = std::chrono::steady_clock::now();
-    const Augmentation a = augment_constriction(dt.points, PointNeighbours(dt), out.mesh.faces, c.interior_vertices,
+    const Augmentation a = augment_constriction(dt.points, PointNeighbours(dt, around), out.mesh.faces, c.interior_vertices,
                                                 options.augmentation, &surface);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
@@ -276,7 +280,8 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   }
   if (options.flips) {
     const auto start = std::chrono::steady_clock::now();
-    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt, &surface);
+    s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt, &surface,
+                            &around);
     s.flip_seconds += seconds_since(start);
   }
   if (options.unfold) {

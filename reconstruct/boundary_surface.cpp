@@ -60,6 +60,15 @@ BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     cgal_.emplace_back(P(i, 0), P(i, 1), P(i, 2));
   }
+  // Each point's face list in one allocation, with room for a few faces of
+  // later edits, instead of growing it face by face.
+  std::vector<int> count(static_cast<std::size_t>(P.rows()), 0);
+  for (Eigen::Index f = 0; f < boundary.rows(); ++f)
+    for (int k = 0; k < 3; ++k) ++count[static_cast<std::size_t>(boundary(f, k))];
+  for (std::size_t v = 0; v < count.size(); ++v)
+    if (count[v] > 0) faces_at_[v].reserve(static_cast<std::size_t>(count[v]) + 2);
+  faces_.reserve(static_cast<std::size_t>(boundary.rows()));
+  alive_.reserve(static_cast<std::size_t>(boundary.rows()));
   for (Eigen::Index f = 0; f < boundary.rows(); ++f) add_face({boundary(f, 0), boundary(f, 1), boundary(f, 2)});
 }
 

@@ -18,8 +18,13 @@ namespace {
 
 class WebCarver {
  public:
-  WebCarver(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixXi& keep, const WebOptions& options)
-      : dt_(dt), kept_(kept), options_(options), width_(options.faces.width * options.faces.width) {
+  WebCarver(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixXi& keep, const WebOptions& options,
+            std::optional<CellsAround>* around)
+      : dt_(dt),
+        kept_(kept),
+        options_(options),
+        width_(options.faces.width * options.faces.width),
+        around_(around ? *around : own_around_) {
     if (options.faces.neighbour < 1) throw InvalidInput("web carving: the spacing neighbour must be at least 1");
     if (!(options.faces.width > 0)) throw InvalidInput("web carving: the width factor must be positive");
     if (keep.rows() > 0 && keep.cols() != 3) throw InvalidInput("kept faces need 3 vertex indices each");
@@ -29,7 +34,7 @@ class WebCarver {
   std::size_t run(const Eigen::MatrixX3i& boundary) {
     const std::vector<std::vector<int>> webs = find_webs(boundary);
     if (webs.empty()) return 0;
-    around_.emplace(dt_);
+    if (!around_) around_.emplace(dt_);
     const auto cells = static_cast<std::size_t>(dt_.cells.rows());
     const auto points = static_cast<std::size_t>(dt_.points.rows());
     mark_.assign(cells, 0);
@@ -406,7 +411,8 @@ class WebCarver {
   std::vector<int> star_;          // scratch of spacing_at
   std::vector<double> lengths_;    // scratch of spacing_at
   TriangleSet keep_;
-  std::optional<CellsAround> around_;
+  std::optional<CellsAround> own_around_;  // unless shared
+  std::optional<CellsAround>& around_;
   int attempt_ = 0;
   std::vector<int> mark_;         // per cell: the attempt that removed it (or marked it a member)
   std::vector<int> part_;         // scratch of parts_at, −1 between calls
@@ -419,13 +425,13 @@ class WebCarver {
 }  // namespace
 
 std::size_t carve_webs(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixX3i& boundary,
-                       const Eigen::MatrixXi& keep, const WebOptions& options) {
+                       const Eigen::MatrixXi& keep, const WebOptions& options, std::optional<CellsAround>* around) {
   if (kept.size() != static_cast<std::size_t>(dt.cells.rows()))
     throw InvalidInput("web carving: one kept flag per Delaunay cell expected, got " + std::to_string(kept.size()) +
                        " for " + std::to_string(dt.cells.rows()) + " cells");
   if (options.repair_rounds < 0 || options.pillar_rounds < 0)
     throw InvalidInput("web carving: the rounds of repairs must not be negative");
-  return WebCarver(dt, kept, keep, options).run(boundary);
+  return WebCarver(dt, kept, keep, options, around).run(boundary);
 }
 
 }  // namespace scanstation

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace scanstation {
@@ -48,6 +49,8 @@ struct WebOptions {
 ///           outside), as Constriction::boundary holds them
 /// keep      #K by 3 boundary triangles that must stay (§5.7), may be empty:
 ///           a sheet holding one stays
+/// around    optional: the cells around each point of dt, shared with the
+///           steps after this one (built here when empty and needed)
 /// Returns the cells removed. Each sheet goes, with the repairs above, only
 /// if afterwards every point of its cells still lies in a kept cell, the
 /// boundary is a 2-manifold at each of them, the Euler characteristic
@@ -55,6 +58,7 @@ struct WebOptions {
 /// triangles at v) and the solid stays connected — so the boundary stays a
 /// sphere through every point that was on it.
 std::size_t carve_webs(const DelaunayComplex<3>& dt, std::vector<char>& kept, const Eigen::MatrixX3i& boundary,
-                       const Eigen::MatrixXi& keep, const WebOptions& options = {});
+                       const Eigen::MatrixXi& keep, const WebOptions& options = {},
+                       std::optional<CellsAround>* around = nullptr);
 
 }  // namespace scanstation
