@@ -284,6 +284,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
                             &around);
     s.flip_seconds += seconds_since(start);
   }
+  around.reset();  // unfolding does not need it: the peak memory is here on real meshes
   if (options.unfold) {
     const auto start = std::chrono::steady_clock::now();
     const UnfoldStatistics u =

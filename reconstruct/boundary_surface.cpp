@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace scanstation {
 
@@ -67,8 +68,11 @@ BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX
     for (int k = 0; k < 3; ++k) ++count[static_cast<std::size_t>(boundary(f, k))];
   for (std::size_t v = 0; v < count.size(); ++v)
     if (count[v] > 0) faces_at_[v].reserve(static_cast<std::size_t>(count[v]) + 2);
-  faces_.reserve(static_cast<std::size_t>(boundary.rows()));
-  alive_.reserve(static_cast<std::size_t>(boundary.rows()));
+  // Room for the faces of later edits too (a flip adds two, a carve three):
+  // growing past the reserve doubles the arrays.
+  const auto room = static_cast<std::size_t>(boundary.rows() + boundary.rows() / 4 + 16);
+  faces_.reserve(room);
+  alive_.reserve(room);
   for (Eigen::Index f = 0; f < boundary.rows(); ++f) add_face({boundary(f, 0), boundary(f, 1), boundary(f, 2)});
 }
 
@@ -173,15 +177,17 @@ namespace {
 struct PlaneFilter {
   PlaneFilter(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
       : a(a), n((b - a).cross(c - a)), scale(1e-12 * (b - a).norm() * (c - a).norm()) {}
-  // +1 or −1 when all of q lie clearly on that side, 0 when undecided.
-  int side(const Eigen::Vector3d (&q)[3]) const {
+  // +1 or −1 when all of q (at least one) lie clearly on that side, 0 when
+  // undecided.
+  int side(std::span<const Eigen::Vector3d> q) const {
     int above = 0, below = 0;
     for (const Eigen::Vector3d& p : q) {
       const double s = n.dot(p - a), margin = scale * (p - a).norm();
       above += s > margin;
       below += s < -margin;
     }
-    return above == 3 ? 1 : below == 3 ? -1 : 0;
+    const int all = static_cast<int>(q.size());
+    return all == 0 ? 0 : above == all ? 1 : below == all ? -1 : 0;
   }
   Eigen::Vector3d a, n;
   double scale;
@@ -203,16 +209,17 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
     const Triangle& other = face(g);
     for (std::size_t k = 0; k < fresh.size(); ++k) {
       if (!boxes[k].intersects(other_box)) continue;
-      // The long triangles of webs have boxes that meet hundreds of faces
-      // far from their plane; those without a shared vertex go by the filter.
+      // A face whose vertices other than those it shares with t lie clearly
+      // on one side of t's plane meets t only in the shared ones: the long
+      // triangles of webs have boxes that meet hundreds of faces far from
+      // their plane, and a flip's new triangles are tested against every
+      // face around their corners, most of them sharing one.
       const Triangle& t = fresh[k];
-      const bool disjoint_ids = std::none_of(t.begin(), t.end(), [&](int v) {
-        return std::find(other.begin(), other.end(), v) != other.end();
-      });
-      if (disjoint_ids) {
-        const Eigen::Vector3d q[3] = {point(other[0]), point(other[1]), point(other[2])};
-        if (planes[k].side(q) != 0) continue;
-      }
+      Eigen::Vector3d q[3];
+      std::size_t off = 0;
+      for (const int v : other)
+        if (std::find(t.begin(), t.end(), v) == t.end()) q[off++] = point(v);
+      if (planes[k].side(std::span<const Eigen::Vector3d>(q, off)) != 0) continue;
       if (improper(t, other)) return false;
     }
     return true;
