@@ -70,7 +70,8 @@ class PointNeighbours {
 /// interior_vertices  (in/out) points not yet on the boundary
 /// surface            optional: receives the augmented surface with its
 ///                    spatial index, for the flips to go on with
-///                    (flip_boundary) instead of indexing it again
+///                    (flip_boundary) instead of indexing it again; it
+///                    refers to `points`, which must outlive it
 ///
 /// A carve removes the tetrahedron (a, b, c, v) behind a boundary triangle
 /// (a, b, c) and brings the interior point v to the boundary; allowed when

@@ -7,7 +7,10 @@
 #include "core/self_intersections.h"
 #include "core/triangle_recall.h"
 #include "core/unique_points.h"
+#include "reconstruct/augmentation.h"
+#include "reconstruct/boundary_flips.h"
 #include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/boundary_surface.h"
 #include "reconstruct/boundary_svg.h"
 #include "sim/outlines.h"
 #include "sim/random.h"
@@ -432,6 +435,44 @@ TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
       EXPECT_EQ(fast, tested) << name;
     }
   }
+}
+
+// The finishing steps hand their indexes on (finish_surface): augmentation's
+// indexed surface goes to the flips, and one index of the cells around each
+// point serves augmentation and the cell flips. Handed on or built afresh,
+// the flips must find the same flips and leave the same faces.
+TEST(Constriction3, FlipsOnAugmentationsSurfaceEqualFlipsOnAFreshOne) {
+  int augmented = 0;
+  for (const std::string name : {"oblong", "homer", "bull", "spool"}) {
+    const Eigen::MatrixX3d P = io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions;
+    const DelaunayComplex<3> dt = delaunay_complex(P);
+    const Constriction<3> c = constrict(dt, constriction_options(surface_defaults()));
+    if (c.all_on_boundary) continue;
+    ++augmented;
+    Eigen::MatrixX3i fresh = c.boundary, handed = c.boundary;
+    std::vector<int> inside_fresh = c.interior_vertices, inside_handed = c.interior_vertices;
+    std::optional<CellsAround> around;
+    std::optional<BoundarySurface> surface;
+    const Augmentation a = augment_constriction(dt.points, PointNeighbours(dt), fresh, inside_fresh);
+    const Augmentation b =
+        augment_constriction(dt.points, PointNeighbours(dt, around), handed, inside_handed, {}, &surface);
+    ASSERT_TRUE(around.has_value()) << name;
+    ASSERT_TRUE(surface.has_value()) << name;
+    EXPECT_EQ(a.carved, b.carved) << name;
+    EXPECT_EQ(fresh, handed) << name;
+    EXPECT_EQ(surface->boundary(), handed) << name;
+    EXPECT_EQ(surface->face_count(), static_cast<std::size_t>(handed.rows())) << name;
+    const std::size_t flips = flip_boundary(dt.points, fresh, FlipCriterion::area_then_delaunay, Eigen::MatrixXi(0, 3),
+                                            1e-3, &dt);
+    EXPECT_GT(flips, 0u) << name;
+    EXPECT_EQ(flip_boundary(dt.points, handed, FlipCriterion::area_then_delaunay, Eigen::MatrixXi(0, 3), 1e-3, &dt,
+                            &surface, &around),
+              flips)
+        << name;
+    EXPECT_EQ(fresh, handed) << name;
+    EXPECT_EQ(surface->boundary(), handed) << name;
+  }
+  EXPECT_GE(augmented, 2);
 }
 
 // Scans are noisy: with Gaussian noise of 0.1% of the bounding-box diagonal
