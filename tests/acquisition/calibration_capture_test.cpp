@@ -34,7 +34,7 @@ struct Bench {
 
   TurntableScanDevices devices() {
     sim::OpenStation& open = station.devices();
-    TurntableScanDevices d{*open.camera, {}, *open.turntable, *open.clock, std::chrono::seconds(2)};
+    TurntableScanDevices d{*open.camera, {}, *open.turntable, *open.clock};
     for (auto& laser : open.lasers) d.lasers.push_back(laser.get());
     return d;
   }

@@ -41,7 +41,7 @@ struct SimStation {
                                   simulated.frames)) {}
 
   TurntableScanDevices devices() {
-    TurntableScanDevices d{*station->camera, {}, *station->turntable, *station->clock, std::chrono::seconds(2)};
+    TurntableScanDevices d{*station->camera, {}, *station->turntable, *station->clock};
     for (auto& laser : station->lasers) d.lasers.push_back(laser.get());
     return d;
   }

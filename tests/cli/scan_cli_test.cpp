@@ -8,11 +8,10 @@
 #include "sim/shapes.h"
 #include "test_support.h"
 
-#include <chrono>
 #include <csignal>
 #include <nlohmann/json.hpp>
 #include <spawn.h>
-#include <thread>
+#include <unistd.h>
 
 extern char** environ;
 
@@ -201,17 +200,38 @@ TEST_F(ScannedSphere, ScanKilledBySigtermKeepsItsStepsAndResumes) {
   const fs::path station = write_station(dir, "[sim]\nstate_file = \"" + lines.string() + "\"\n");
   const std::string binary = SCANSTATION_BINARY, station_arg = station.string(), out = folder.string(),
                     steps = std::to_string(kSteps);
-  const char* argv[] = {binary.c_str(), "-q",          "scan",          "--station", station_arg.c_str(),
-                        "--object",     "sphere",      "--steps",       steps.c_str(), "-o",
+  const char* argv[] = {binary.c_str(), "--progress=json", "scan",        "--station", station_arg.c_str(),
+                        "--object",     "sphere",          "--steps",     steps.c_str(), "-o",
                         out.c_str(),    nullptr};
+  // The child's progress (stderr) comes through a pipe: its first "step"
+  // event, written after the step is recorded, is the moment to interrupt.
+  int pipe_ends[2];
+  ASSERT_EQ(pipe(pipe_ends), 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipe_ends[0]);
   pid_t child = 0;
-  ASSERT_EQ(posix_spawn(&child, binary.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ), 0);
-  // Wait (bounded) for the first recorded step, then interrupt.
-  for (int i = 0; i < 3000 && count_lines(slurp(folder / "journal.jsonl"), "\"event\":\"step\"") < 1; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  kill(child, SIGTERM);
+  const int spawned = posix_spawn(&child, binary.c_str(), &actions, nullptr, const_cast<char**>(argv), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(pipe_ends[1]);
+  ASSERT_EQ(spawned, 0);
+  std::string seen;
+  char buffer[4096];
+  bool interrupted = false;
+  // Read to the end (the child's exit closes the pipe), so that it never
+  // blocks on a full pipe; interrupt at the first step.
+  for (ssize_t n; (n = read(pipe_ends[0], buffer, sizeof buffer)) > 0;) {
+    seen.append(buffer, static_cast<std::size_t>(n));
+    if (!interrupted && seen.find("\"event\":\"step\"") != std::string::npos) {
+      kill(child, SIGTERM);
+      interrupted = true;
+    }
+  }
+  close(pipe_ends[0]);
   int status = 0;
   waitpid(child, &status, 0);
+  ASSERT_TRUE(interrupted) << seen;
   const std::size_t kept = count_lines(slurp(folder / "journal.jsonl"), "\"event\":\"step\"");
   EXPECT_GE(kept, 1u);
   ASSERT_TRUE(WIFEXITED(status)) << "the scan stops after its step and writes its results";
