@@ -27,6 +27,7 @@ class WebCarver {
         around_(around ? *around : own_around_) {
     if (options.faces.neighbour < 1) throw InvalidInput("web carving: the spacing neighbour must be at least 1");
     if (!(options.faces.width > 0)) throw InvalidInput("web carving: the width factor must be positive");
+    if (!(options.max_share > 0)) throw InvalidInput("web carving: the largest share of a sheet must be positive");
     if (keep.rows() > 0 && keep.cols() != 3) throw InvalidInput("kept faces need 3 vertex indices each");
     keep_ = TriangleSet(keep);
   }
@@ -95,7 +96,11 @@ class WebCarver {
   }
 
   // The sheets: kept cells reached from a wide boundary face through wide
-  // faces only, joined through those faces; each of at least min_cells.
+  // faces only, joined through those faces; each of at least min_cells and
+  // at most max_share of the kept cells. A flood that outgrows that share
+  // stops and is dropped, and so is any later one that reaches its cells
+  // through a wide face (the same sheet, seeded elsewhere), so the dropped
+  // sheet costs about the share, not its size.
   // The spacing needs the Delaunay edges at a point, a sweep over all cells
   // when done for every point (0.8 s at a million points), so the boundary
   // faces are screened first with a spacing read off the boundary itself:
@@ -123,7 +128,10 @@ class WebCarver {
       return std::isfinite(s[1]) ? s[1] : s[0];
     };
     spacing_.assign(points, -1.0);
-    std::vector<char> taken(static_cast<std::size_t>(dt_.cells.rows()), 0);
+    const auto kept_cells = static_cast<double>(std::count(kept_.begin(), kept_.end(), 1));
+    const auto most = static_cast<std::size_t>(std::max(options_.max_share * kept_cells, static_cast<double>(options_.min_cells)));
+    std::vector<int> flood(static_cast<std::size_t>(dt_.cells.rows()), 0);  // which flood took a cell (from 1), 0: none
+    std::vector<char> dropped(1, 0);                                         // per flood
     std::vector<std::vector<int>> webs;
     for (Eigen::Index f = 0; f < boundary.rows(); ++f) {
       const int a = boundary(f, 0), b = boundary(f, 1), d = boundary(f, 2);
@@ -133,18 +141,26 @@ class WebCarver {
           !wider_than(point(a), point(b), point(d), local, width_))
         continue;
       const auto [c, i] = kept_cell_of(a, b, d);
-      if (c < 0 || taken[static_cast<std::size_t>(c)] || !wide(c, i)) continue;
+      if (c < 0 || flood[static_cast<std::size_t>(c)] || !wide(c, i)) continue;
+      const int id = static_cast<int>(dropped.size());
+      dropped.push_back(0);
       std::vector<int> members{c};
-      taken[static_cast<std::size_t>(c)] = 1;
-      for (std::size_t k = 0; k < members.size(); ++k)
-        for (int j = 0; j < 4; ++j) {
+      flood[static_cast<std::size_t>(c)] = id;
+      for (std::size_t k = 0; k < members.size() && !dropped.back(); ++k)
+        for (int j = 0; j < 4 && !dropped.back(); ++j) {
           const int n = dt_.neighbors(members[k], j);
-          if (is_kept(n) && !taken[static_cast<std::size_t>(n)] && wide(members[k], j)) {
-            taken[static_cast<std::size_t>(n)] = 1;
+          if (!is_kept(n)) continue;
+          const int other = flood[static_cast<std::size_t>(n)];
+          if (other == 0 && wide(members[k], j)) {
+            flood[static_cast<std::size_t>(n)] = id;
             members.push_back(n);
+            dropped.back() = members.size() > most;
+          } else if (other != id && other != 0 && dropped[static_cast<std::size_t>(other)] && wide(members[k], j)) {
+            dropped.back() = 1;
           }
         }
-      if (members.size() >= static_cast<std::size_t>(std::max(options_.min_cells, 1))) webs.push_back(std::move(members));
+      if (!dropped.back() && members.size() >= static_cast<std::size_t>(std::max(options_.min_cells, 1)))
+        webs.push_back(std::move(members));
     }
     return webs;
   }

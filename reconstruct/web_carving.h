@@ -30,6 +30,15 @@ struct WebOptions {
   /// flat faces) small ones are the object's own; CGAL's handle.off loses
   /// 1.6 points of triangle recall to them.
   int min_cells = 32;
+  /// Sheets of more than this share of the kept cells are left, and not
+  /// tried: a sheet between two parts is a small part of the solid (the
+  /// largest on CGAL's 26 closed genus-0 meshes is 844 cells, 1% of the
+  /// solid). On an open scan — a turntable scan so far, a wedge of the
+  /// object — the wide faces across the open side lead into the whole solid
+  /// (78% of its cells at 80k points of a half-scanned ellipsoid), which no
+  /// removal keeps a sphere; following it to the end and trying it took
+  /// two fifths of that reconstruction.
+  double max_share = 0.25;
   /// Rounds of repairs where removing a sheet pinches the boundary at a
   /// point: the kept cells around it in several parts (the sheet wrapped a
   /// thin contact between the two sides) lose all parts but the largest;

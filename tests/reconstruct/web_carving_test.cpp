@@ -10,6 +10,7 @@
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/constriction.h"
 #include "reconstruct/delaunay_complex.h"
+#include "sim/arrival_order.h"
 #include "sim/random.h"
 #include "sim/sampling.h"
 #include "sim/shapes.h"
@@ -66,6 +67,7 @@ TEST(WebCarving, EveryResultStaysASphereThroughTheSamePoints) {
   }
   WebOptions options;
   options.min_cells = 1;
+  options.max_share = 1.0;
   std::size_t removed = 0;
   for (const auto& [name, P] : inputs) {
     const DelaunayComplex<3> dt = delaunay_complex(P);
@@ -106,6 +108,37 @@ TEST(WebCarving, KeepsTheFacesThatMustStay) {
   EXPECT_EQ(held, c.kept);
 }
 
+// A sheet of more than max_share of the kept cells stays, and is not tried:
+// on two spheres every sheet goes only with a share of 1. On a half-scanned
+// ellipsoid the wide faces across the open side lead into most of the solid,
+// which no removal keeps a sphere: the result is the same as with a share of
+// 1 (nothing goes) either way.
+TEST(WebCarving, LeavesSheetsOverItsShareOfTheSolid) {
+  const Eigen::MatrixX3d spheres = two_spheres(300, 0.3, 7);
+  const DelaunayComplex<3> dt = delaunay_complex(spheres);
+  const Constriction<3> c = constrict(dt);
+  WebOptions options;
+  options.faces.width = 1.0;
+  options.min_cells = 2;
+  options.max_share = 1.0;
+  std::vector<char> whole = c.kept, small = c.kept;
+  ASSERT_GT(carve_webs(dt, whole, c.boundary, Eigen::MatrixXi(), options), 0u);
+  options.max_share = 1e-9;  // at most min_cells: every sheet is larger
+  EXPECT_EQ(carve_webs(dt, small, c.boundary, Eigen::MatrixXi(), options), 0u);
+  EXPECT_EQ(small, c.kept);
+
+  const Eigen::MatrixX3d P = sim::sample_surface(sim::ellipsoid({3.0, 2.0, 1.0}, 4), 6000, 3).positions;
+  const std::vector<Eigen::Index> order = sim::turntable_order(P);
+  const DelaunayComplex<3> half = delaunay_complex(sim::ordered_rows(P, order, 0, order.size() / 2));
+  const Constriction<3> h = constrict(half);
+  std::vector<char> capped = h.kept, uncapped = h.kept;
+  EXPECT_EQ(carve_webs(half, capped, h.boundary, Eigen::MatrixXi(), {}), 0u);
+  options = {};
+  options.max_share = 1.0;
+  EXPECT_EQ(carve_webs(half, uncapped, h.boundary, Eigen::MatrixXi(), options), 0u);
+  EXPECT_EQ(capped, uncapped);
+}
+
 TEST(WebCarving, RejectsBadOptions) {
   const DelaunayComplex<3> dt = delaunay_complex(two_spheres(50, 0.3, 1));
   const Constriction<3> c = constrict(dt);
@@ -121,6 +154,9 @@ TEST(WebCarving, RejectsBadOptions) {
   fails(o);
   o = {};
   o.repair_rounds = -1;
+  fails(o);
+  o = {};
+  o.max_share = 0;
   fails(o);
   std::vector<char> short_flags(3, 1);
   EXPECT_THROW(carve_webs(dt, short_flags, c.boundary, Eigen::MatrixXi(), {}), InvalidInput);
