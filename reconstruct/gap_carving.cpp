@@ -13,28 +13,6 @@ namespace scanstation {
 
 namespace {
 
-// Keeps the k shortest distinct lengths offered, ascending, in s[0, k)
-// (infinite until filled).
-void offer(double* s, std::size_t k, double length) {
-  if (length >= s[k - 1]) return;  // most lengths, once the shortest are known
-  for (std::size_t i = 0; i < k; ++i) {
-    if (s[i] == length) return;  // an edge is met once per cell around it
-    if (length < s[i]) {
-      std::copy_backward(s + i, s + k - 1, s + k);
-      s[i] = length;
-      return;
-    }
-  }
-}
-
-// The k-th of them, or the last one known when fewer were offered; 0 when
-// none was.
-double kth(const double* s, std::size_t k) {
-  for (std::size_t i = k; i-- > 0;)
-    if (std::isfinite(s[i])) return s[i];
-  return 0.0;
-}
-
 // Per point of dt, the square of its spacing: the k-th shortest distinct
 // length of its Delaunay edges (k = neighbour ≥ 1; the longest one when it
 // has fewer). One pass over the cells.
@@ -54,12 +32,12 @@ std::vector<double> point_spacing(const DelaunayComplex<3>& dt, int neighbour) {
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) {
         const double length = (p[i] - p[j]).squaredNorm();
-        offer(shortest.data() + static_cast<std::size_t>(v[i]) * stride, stride, length);
-        offer(shortest.data() + static_cast<std::size_t>(v[j]) * stride, stride, length);
+        offer_length(shortest.data() + static_cast<std::size_t>(v[i]) * stride, stride, length);
+        offer_length(shortest.data() + static_cast<std::size_t>(v[j]) * stride, stride, length);
       }
   }
   std::vector<double> spacing(points);
-  for (std::size_t v = 0; v < points; ++v) spacing[v] = kth(shortest.data() + v * stride, stride);
+  for (std::size_t v = 0; v < points; ++v) spacing[v] = kth_length(shortest.data() + v * stride, stride);
   return spacing;
 }
 

@@ -18,6 +18,9 @@
 
 #include "reconstruct/delaunay_complex.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace scanstation {
@@ -47,6 +50,29 @@ struct GapOptions {
 /// Cost: linear in the cells (one pass over the edges, two walks over the
 /// reached cells).
 std::vector<int> gap_depths(const DelaunayComplex<3>& dt, const GapOptions& options = {});
+
+/// The spacing of GapOptions from one point's edge lengths, offered one by
+/// one (an edge may be offered once per cell around it): s[0, k) keeps the
+/// k shortest distinct ones, ascending, infinite until filled.
+inline void offer_length(double* s, std::size_t k, double length) {
+  if (length >= s[k - 1]) return;  // most lengths, once the shortest are known
+  for (std::size_t i = 0; i < k; ++i) {
+    if (s[i] == length) return;
+    if (length < s[i]) {
+      std::copy_backward(s + i, s + k - 1, s + k);
+      s[i] = length;
+      return;
+    }
+  }
+}
+
+/// The k-th shortest length offered, or the longest one when fewer were
+/// offered; 0 when none was.
+inline double kth_length(const double* s, std::size_t k) {
+  for (std::size_t i = k; i-- > 0;)
+    if (std::isfinite(s[i])) return s[i];
+  return 0.0;
+}
 
 /// Whether the smallest ball holding the triangle abd has a squared radius
 /// of more than `width` times `spacing` (both squared; false when spacing is

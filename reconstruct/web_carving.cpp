@@ -78,13 +78,12 @@ class WebCarver {
     double& known = spacing_[static_cast<std::size_t>(v)];
     if (known >= 0) return known;
     walk_star(v);
-    lengths_.clear();
+    const auto k = static_cast<std::size_t>(options_.faces.neighbour);
+    shortest_.assign(k, kInfinity);
     for (const int c : star_)
       for (int i = 0; i < 4; ++i)
-        if (const int w = dt_.cells(c, i); w != v) lengths_.push_back((point(w) - point(v)).squaredNorm());
-    std::sort(lengths_.begin(), lengths_.end());
-    lengths_.erase(std::unique(lengths_.begin(), lengths_.end()), lengths_.end());
-    known = lengths_.empty() ? 0.0 : lengths_[std::min(lengths_.size(), static_cast<std::size_t>(options_.faces.neighbour)) - 1];
+        if (const int w = dt_.cells(c, i); w != v) offer_length(shortest_.data(), k, (point(w) - point(v)).squaredNorm());
+    known = kth_length(shortest_.data(), k);
     return known;
   }
 
@@ -171,13 +170,20 @@ class WebCarver {
       cell_of_.assign(static_cast<std::size_t>(dt_.points.rows()), -1);
       for (Eigen::Index c = 0; c < dt_.cells.rows(); ++c)
         for (int k = 0; k < 4; ++k) cell_of_[static_cast<std::size_t>(dt_.cells(c, k))] = static_cast<int>(c);
+      walked_.assign(static_cast<std::size_t>(dt_.cells.rows()), 0);
     }
-    star_.assign(1, cell_of_[static_cast<std::size_t>(v)]);
+    ++walk_;
+    const int first = cell_of_[static_cast<std::size_t>(v)];
+    star_.assign(1, first);
+    walked_[static_cast<std::size_t>(first)] = walk_;
     for (std::size_t k = 0; k < star_.size(); ++k)
       for (int i = 0; i < 4; ++i) {
         if (dt_.cells(star_[k], i) == v) continue;
         const int n = dt_.neighbors(star_[k], i);  // across a face holding v
-        if (n >= 0 && std::find(star_.begin(), star_.end(), n) == star_.end()) star_.push_back(n);
+        if (n >= 0 && walked_[static_cast<std::size_t>(n)] != walk_) {
+          walked_[static_cast<std::size_t>(n)] = walk_;
+          star_.push_back(n);
+        }
       }
   }
 
@@ -424,8 +430,10 @@ class WebCarver {
   static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::vector<double> spacing_;    // squared, per point; −1: not known yet
   std::vector<int> cell_of_;       // per point, a cell around it (once the spacing is asked)
-  std::vector<int> star_;          // scratch of spacing_at
-  std::vector<double> lengths_;    // scratch of spacing_at
+  std::vector<int> star_;          // scratch of walk_star
+  std::vector<int> walked_;        // per cell, the last walk that met it
+  int walk_ = 0;
+  std::vector<double> shortest_;   // scratch of spacing_at
   TriangleSet keep_;
   std::optional<CellsAround> own_around_;  // unless shared
   std::optional<CellsAround>& around_;
