@@ -35,6 +35,26 @@ Eigen::MatrixX3d two_spheres(Eigen::Index per_sphere, double gap, std::uint64_t 
   return P;
 }
 
+// A Delaunay complex and its constriction.
+struct Constricted {
+  DelaunayComplex<3> dt;
+  Constriction<3> c;
+};
+
+Constricted constricted(const Eigen::MatrixX3d& P) {
+  Constricted out{delaunay_complex(P), {}};
+  out.c = constrict(out.dt);
+  return out;
+}
+
+// Faces count as wide from one spacing on: most of a solid is proposed.
+WebOptions wide_from_one_spacing(int min_cells) {
+  WebOptions options;
+  options.faces.width = 1.0;
+  options.min_cells = min_cells;
+  return options;
+}
+
 // The boundary of the kept cells is a closed 2-manifold of genus 0 in one
 // piece, and its vertices are the points `on` says.
 void expect_sphere(const DelaunayComplex<3>& dt, const std::vector<char>& kept, const std::vector<char>& on,
@@ -96,12 +116,8 @@ TEST(WebCarving, EveryResultStaysASphereThroughTheSamePoints) {
 
 // A web that holds a face which must stay (§5.7) stays.
 TEST(WebCarving, KeepsTheFacesThatMustStay) {
-  const Eigen::MatrixX3d P = two_spheres(300, 0.3, 7);
-  const DelaunayComplex<3> dt = delaunay_complex(P);
-  const Constriction<3> c = constrict(dt);
-  WebOptions options;
-  options.faces.width = 1.0;
-  options.min_cells = 1;
+  const auto [dt, c] = constricted(two_spheres(300, 0.3, 7));
+  const WebOptions options = wide_from_one_spacing(1);
   std::vector<char> free_kept = c.kept, held = c.kept;
   ASSERT_GT(carve_webs(dt, free_kept, c.boundary, Eigen::MatrixXi(), options), 0u);
   EXPECT_EQ(carve_webs(dt, held, c.boundary, Eigen::MatrixXi(c.boundary), options), 0u);
@@ -114,23 +130,18 @@ TEST(WebCarving, KeepsTheFacesThatMustStay) {
 // which no removal keeps a sphere: the result is the same as with a share of
 // 1 (nothing goes) either way.
 TEST(WebCarving, LeavesSheetsOverItsShareOfTheSolid) {
-  const Eigen::MatrixX3d spheres = two_spheres(300, 0.3, 7);
-  const DelaunayComplex<3> dt = delaunay_complex(spheres);
-  const Constriction<3> c = constrict(dt);
-  WebOptions options;
-  options.faces.width = 1.0;
-  options.min_cells = 2;
+  const auto [dt, c] = constricted(two_spheres(300, 0.3, 7));
+  WebOptions options = wide_from_one_spacing(2);
   options.max_share = 1.0;
   std::vector<char> whole = c.kept, small = c.kept;
   ASSERT_GT(carve_webs(dt, whole, c.boundary, Eigen::MatrixXi(), options), 0u);
-  options.max_share = 1e-9;  // at most min_cells: every sheet is larger
+  options.max_share = 1e-9;  // at most min_cells (2): every sheet here is larger
   EXPECT_EQ(carve_webs(dt, small, c.boundary, Eigen::MatrixXi(), options), 0u);
   EXPECT_EQ(small, c.kept);
 
   const Eigen::MatrixX3d P = sim::sample_surface(sim::ellipsoid({3.0, 2.0, 1.0}, 4), 6000, 3).positions;
   const std::vector<Eigen::Index> order = sim::turntable_order(P);
-  const DelaunayComplex<3> half = delaunay_complex(sim::ordered_rows(P, order, 0, order.size() / 2));
-  const Constriction<3> h = constrict(half);
+  const auto [half, h] = constricted(sim::ordered_rows(P, order, 0, order.size() / 2));
   std::vector<char> capped = h.kept, uncapped = h.kept;
   EXPECT_EQ(carve_webs(half, capped, h.boundary, Eigen::MatrixXi(), {}), 0u);
   options = {};
