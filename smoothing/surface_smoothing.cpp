@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "smoothing/cross_edge_directions.h"
+#include "smoothing/fitted_normals.h"
 #include "smoothing/mesh_edges.h"
 #include "smoothing/sign_condition.h"
 #include "smoothing/six_split.h"
@@ -103,6 +104,9 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
       throw InvalidInput("given normals: " + std::to_string(options.given_normals->rows()) + " rows for " +
                          std::to_string(V.rows()) + " vertices");
     N = options.given_normals->rowwise().normalized();
+  } else if (options.fitted_neighbours > 0) {
+    const auto neighbours = std::min<Eigen::Index>(options.fitted_neighbours, V.rows());
+    N = fitted_vertex_normals(V, mesh.faces, static_cast<int>(neighbours));
   } else {
     N = vertex_normals(V, mesh.faces, options.normals);
   }
@@ -177,6 +181,10 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
               {"unmatched_edges", s.g1.unmatched_edges}}},
       {"oscillation", {{"max_relative", s.oscillation.max_relative}, {"mean_relative", s.oscillation.mean_relative}}}};
   if (std::isfinite(options.max_move)) report["max_move"] = options.max_move;
+  if (!options.given_normals && options.fitted_neighbours > 0) {
+    report["normals"] = "fitted";
+    report["fitted_neighbours"] = options.fitted_neighbours;
+  }
   if (options.scheme != SplitScheme::six_split)
     report["ratio"] = options.least_squares_ratio ? "least-squares" : "one";
   if (options.scheme == SplitScheme::adaptive_two_split) {

@@ -24,7 +24,8 @@ enum class SplitScheme { six_split, three_split, adaptive_two_split };
 std::string scheme_name(SplitScheme scheme);
 
 /// scheme        §9.8 (least oscillation), §9.6, or §9.7 on thin triangles
-/// normals       the weighting of §9.4, unless given_normals (#V by 3) is set
+/// normals       the weighting of §9.4, unless given_normals (#V by 3) or
+///               fitted_neighbours is set
 /// tension       the Step-2 constant (1/3 in the thesis)
 /// least_squares_ratio  three-/two-split Step 5: the free ratio by least squares
 /// min_angle     adaptive two-split: triangles with a smaller angle (degrees)
@@ -35,6 +36,10 @@ struct SurfaceSmoothingOptions {
   SplitScheme scheme = SplitScheme::six_split;
   NormalWeighting normals = NormalWeighting::area;
   std::optional<Eigen::MatrixX3d> given_normals;
+  /// > 0 (and no given normals): the normals of planes fitted to this many
+  /// nearest vertices (fitted_normals.h, a scanstation extension of §9.4)
+  /// instead of the `normals` weighting; the station flow takes 16
+  int fitted_neighbours = 0;
   double tension = 1.0 / 3.0;
   bool least_squares_ratio = true;
   double min_angle = 20.0;

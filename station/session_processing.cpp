@@ -122,6 +122,10 @@ TriangleMesh boundary_mesh(const FinalBoundary& b, const acquisition::ScanResult
 SurfaceSmoothingOptions station_smoothing() {
   SurfaceSmoothingOptions options;
   options.max_move = 1.0;
+  // Normals fitted to the scanned points around each vertex: the boundary's
+  // own faces lean far off the surface where a scan is sparse (docs/design.md,
+  // "Fitted normals").
+  options.fitted_neighbours = 16;
   return options;
 }
 

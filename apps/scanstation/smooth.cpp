@@ -36,9 +36,16 @@ class SmoothCommand final : public Command {
         ->check(CLI::IsMember({"six-split", "three-split", "adaptive-two-split", "curve"}))
         ->capture_default_str();
     cli_->add_option("--normals", normals_,
-                     "Vertex normals (§9.4): area, uniform or inverse-area weighting, or given (the input's own "
-                     "normals); curves use the same names for the tangent weighting (length for area)")
-        ->check(CLI::IsMember({"area", "uniform", "inverse-area", "given"}))
+                     "Vertex normals (§9.4): area, uniform or inverse-area weighting, given (the input's own "
+                     "normals), or fitted (the normal of the plane fitted to the --neighbours nearest vertices, "
+                     "turned to the side of the area-weighted one: for scanned boundaries, as the station flow "
+                     "uses); curves use the same names for the tangent weighting (length for area)")
+        ->check(CLI::IsMember({"area", "uniform", "inverse-area", "given", "fitted"}))
+        ->capture_default_str();
+    cli_->add_option("--neighbours", neighbours_,
+                     "--normals fitted: how many nearest vertices each plane is fitted to (all of them when there are "
+                     "fewer)")
+        ->check(CLI::Range(3, 1000000))
         ->capture_default_str();
     cli_->add_option("--ratio", ratio_,
                      "three-split Step 5: one (e0 = e1 = 1, as the thesis) or least-squares (the free ratio e1/e0 "
@@ -87,7 +94,8 @@ class SmoothCommand final : public Command {
     const std::map<std::string, TangentWeighting> weightings{{"area", TangentWeighting::length},
                                                              {"uniform", TangentWeighting::uniform},
                                                              {"inverse-area", TangentWeighting::inverse_length}};
-    if (normals_ == "given") throw InvalidInput("--normals given: polygons carry no tangents; use area, uniform or inverse-area");
+    if (normals_ == "given" || normals_ == "fitted")
+      throw InvalidInput("--normals " + normals_ + ": for surfaces; polygons take area, uniform or inverse-area");
     StageTimer curve_timer(context.report, "curve");
     const G1Curve curve = g1_curve(polygon, polygon_tangents(polygon, weightings.at(normals_)));
     curve_timer.stop();
@@ -176,6 +184,8 @@ class SmoothCommand final : public Command {
     if (normals_ == "given") {
       if (!mesh.vertices.has_normals()) throw InvalidInput("--normals given: " + input_.string() + " has no normals");
       options.given_normals = mesh.vertices.normals;
+    } else if (normals_ == "fitted") {
+      options.fitted_neighbours = neighbours_;
     } else {
       const std::map<std::string, NormalWeighting> weightings{{"area", NormalWeighting::area},
                                                               {"uniform", NormalWeighting::uniform},
@@ -188,6 +198,7 @@ class SmoothCommand final : public Command {
   std::filesystem::path input_, output_;
   std::string scheme_ = "six-split";
   std::string normals_ = "area";
+  int neighbours_ = 16;
   std::string ratio_ = "least-squares";
   double tension_ = 1.0 / 3.0;
   double min_angle_ = 20.0;
