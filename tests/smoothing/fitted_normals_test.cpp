@@ -41,6 +41,25 @@ TEST(FittedNormals, FollowANoisySphereCloserThanTheFaceNormals) {
   }
 }
 
+TEST(FittedNormals, FitEachFaceOfAThinWedgeOnItsOwn) {
+  // A disc 2 wide and 0.02 thick whose upper face is tilted by atan(0.1),
+  // 5.7°: the nearest vertices of a point on the upper face include the
+  // lower face's, and a plane through both would lean halfway between them.
+  TriangleMesh wedge = sim::ellipsoid({1.0, 1.0, 0.01}, 3);
+  Eigen::MatrixX3d& V = wedge.vertices.positions;
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (V(v, 2) > 0) V(v, 2) += 0.1 * V(v, 0);
+  const Eigen::MatrixX3d N = fitted_vertex_normals(V, wedge.faces, 16);
+  const Eigen::RowVector3d upper = Eigen::RowVector3d(-0.1, 0.0, 1.0).normalized();
+  int checked = 0;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    if (V(v, 2) <= 0 || V.row(v).head<2>().norm() > 0.6) continue;
+    ++checked;
+    EXPECT_LT(angle(N.row(v), upper), 1.5 * std::numbers::pi / 180) << "vertex " << v;
+  }
+  EXPECT_GT(checked, 25);
+}
+
 TEST(FittedNormals, KeepTheFacesOfAThinPlateApart) {
   // A disc 2 wide and 0.02 thick: the nearest vertices of a point on one face
   // lie on the other face too, whose normals point the other way.
