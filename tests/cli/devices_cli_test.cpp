@@ -108,12 +108,14 @@ TEST(DevicesCli, SigtermToLaserOnLeavesTheLaserOff) {
   const char* argv[] = {binary.c_str(), "-q", "laser", "0", "on", "--station", station.c_str(), nullptr};
   pid_t child = 0;
   ASSERT_EQ(posix_spawn(&child, binary.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ), 0);
-  // Wait (bounded) until the child has switched the laser on.
-  for (int i = 0; i < 1000 && slurp(lines).rfind('1', 0) != 0; ++i)
+  // Wait until the child has switched the laser on, or has ended without.
+  int status = 0;
+  bool ended = false;
+  while (slurp(lines).rfind('1', 0) != 0 && !(ended = waitpid(child, &status, WNOHANG) == child))
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   const std::string before = slurp(lines);
-  kill(child, SIGTERM);  // also when the laser never came on: no orphan left behind
-  int status = 0;
+  ASSERT_FALSE(ended) << "the child ended before the laser came on (exit status " << status << ")";
+  kill(child, SIGTERM);
   waitpid(child, &status, 0);
   ASSERT_EQ(before.substr(0, 1), "1") << "the laser came on (levels LASER0, STEP, DIR, EN)";
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);

@@ -8,7 +8,9 @@
 #include "core/io/mesh_io.h"
 #include "test_support.h"
 
-#include <chrono>
+#include <ctime>
+#include <iomanip>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 namespace scanstation {
@@ -151,11 +153,13 @@ TEST(ScanWithCalibration, CalibratedSphereWithinTheBudgetAndBadCalibrationsRefus
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_THAT(r.err, testing::HasSubstr("has no plane for laser 0: run `scanstation calibrate laser`"));
 
-    // Forty days later the calibration is stale (30 days accepted by default),
-    // unless the operator accepts its age.
-    // (calibration_date() and so the scan's "now" honour SOURCE_DATE_EPOCH.)
-    const long long later = std::chrono::duration_cast<std::chrono::seconds>(
-                                std::chrono::system_clock::now().time_since_epoch()).count() + 40 * 86400;
+    // Forty days after the camera part was made the calibration is stale (30
+    // days accepted by default), unless the operator accepts its age. The
+    // scan's "now" honours SOURCE_DATE_EPOCH, set from the file's own date.
+    std::tm made{};
+    std::istringstream(json::parse(slurp(calibration))["camera"]["date"].get<std::string>()) >>
+        std::get_time(&made, "%Y-%m-%dT%H:%M:%SZ");
+    const long long later = static_cast<long long>(timegm(&made)) + 40 * 86400;
     const std::string stale_scan = "--progress none scan --station " + station.string() +
                                    " --steps 4 --stop-after 1 --calibration " + calibration.string();
     ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", std::to_string(later).c_str(), 1), 0);
