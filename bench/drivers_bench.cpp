@@ -27,6 +27,7 @@
 #include "sim/devices/sim_gpio_chip.h"
 #include "sim/devices/sim_usb_board.h"
 #include "sim/devices/virtual_clock.h"
+#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 #include <cmath>
@@ -124,4 +125,4 @@ BENCHMARK(StepperPulseTrain);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

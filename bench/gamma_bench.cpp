@@ -11,6 +11,7 @@
 #include "reconstruct/gamma_graph.h"
 
 #include "../tests/reconstruct/gamma_brute_force.h"
+#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 
@@ -73,4 +74,4 @@ const bool registered = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

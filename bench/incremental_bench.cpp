@@ -27,6 +27,7 @@
 // the triangle recall of the from-scratch result and of the incremental one
 // after the last batch, in scan and in random order, and the wider repairs.
 #include "core/io/mesh_io.h"
+#include "core/process_memory.h"
 #include "core/mesh_topology.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
@@ -168,6 +169,7 @@ int recall(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  scanstation::keep_freed_memory();  // as `scanstation` does
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s timing|recall [options] [MESH.off ...]\n", argv[0]);
     return 2;

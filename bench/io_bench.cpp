@@ -7,6 +7,7 @@
 // The mesh is an icosphere with 655,362 vertices and 1,310,720 triangles.
 #include "core/io/mesh_io.h"
 #include "sim/shapes.h"
+#include "bench/benchmark_main.h"
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Simple_cartesian.h>
@@ -103,4 +104,4 @@ const int registered = register_all();
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

@@ -12,6 +12,7 @@
 #include "sim/scene_renderer.h"
 #include "sim/surface_of_revolution.h"
 #include "sim/turntable_rig.h"
+#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
@@ -86,4 +87,4 @@ BENCHMARK(ExtractColumns)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

@@ -9,6 +9,7 @@
 #include "sim/outlines.h"
 #include "sim/random.h"
 #include "sim/sampling.h"
+#include "bench/benchmark_main.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -129,4 +130,4 @@ const bool registered_2d = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

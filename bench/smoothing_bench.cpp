@@ -22,6 +22,7 @@
 #include "smoothing/three_split.h"
 #include "smoothing/two_split.h"
 #include "smoothing/vertex_normals.h"
+#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 
@@ -162,4 +163,4 @@ BENCHMARK(TwoSplit)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(Verification)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(EdgeAdjacency)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(Tessellation)->DenseRange(5, 6)->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

@@ -4,6 +4,7 @@
 #include "command.h"
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/process_memory.h"
 #include "core/version.h"
 
 #include <cstdio>
@@ -74,6 +75,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  scanstation::keep_freed_memory();  // before any thread starts
   try {
     return run(argc, argv);
   } catch (const scanstation::InvalidInput& e) {
