@@ -34,6 +34,9 @@ nlohmann::json to_json(const LiveStep& s) {
                       {"boundary_faces", s.boundary_faces},
                       {"all_on_boundary", s.all_on_boundary},
                       {"pending", s.pending},
+                      {"cells_touched", s.cells_touched},
+                      {"faces_changed", s.faces_changed},
+                      {"wider_repair", s.wider_repair},
                       {"seconds", s.seconds}};
   if (s.snapshot) j["snapshot"] = s.snapshot->string();
   return j;
@@ -67,6 +70,9 @@ LiveStep LiveBoundary::add_step(int step, double angle_deg, const std::vector<ac
   live.boundary_faces = constriction_.boundary_face_count();
   live.all_on_boundary = stats.all_on_boundary;
   live.pending = stats.pending;
+  live.cells_touched = stats.tetrahedra_touched;
+  live.faces_changed = stats.faces_changed;
+  live.wider_repair = stats.wider_repair;
   if (options_.snapshot_every > 0 && steps_ % options_.snapshot_every == 0 && live.boundary_faces > 0) {
     TriangleMesh mesh = constriction_.boundary();
     mesh.vertices.positions = acquisition::own_coordinates(mesh.vertices.positions, options_.placement);

@@ -55,12 +55,18 @@ struct LiveStep {
   Eigen::Index step_points = 0, points = 0, boundary_faces = 0;
   bool all_on_boundary = false;
   std::size_t pending = 0;
+  /// How far the step's repair reached (BatchStats): the Delaunay cells it
+  /// looked at, the boundary triangles it re-decided (all of them when the
+  /// repair was not local), and whether it re-constricted everything.
+  std::size_t cells_touched = 0, faces_changed = 0;
+  bool wider_repair = false;
   double seconds = 0;
   std::optional<std::filesystem::path> snapshot;
 };
 
 /// The "boundary" progress event: {step, angle_deg, points, boundary_faces,
-/// all_on_boundary, pending, seconds[, snapshot]}.
+/// all_on_boundary, pending, cells_touched, faces_changed, wider_repair,
+/// seconds[, snapshot]}.
 nlohmann::json to_json(const LiveStep& step);
 
 class LiveBoundary {

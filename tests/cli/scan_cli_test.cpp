@@ -124,6 +124,11 @@ TEST_F(ScannedSphere, ProgressJsonFollowsTheLiveBoundaryStepByStep) {
     const int pending = live[i]["pending"].get<int>();
     EXPECT_EQ(live[i]["all_on_boundary"].get<bool>(), pending == 0) << "step " << i;
     EXPECT_EQ(live[i]["boundary_faces"].get<int>(), 2 * (live[i]["points"].get<int>() - pending) - 4);
+    // How far the repair reached: some cells, at most the boundary re-decided.
+    EXPECT_GT(live[i]["cells_touched"].get<int>(), 0) << "step " << i;
+    EXPECT_GT(live[i]["faces_changed"].get<int>(), 0) << "step " << i;
+    EXPECT_LE(live[i]["faces_changed"].get<int>(), live[i]["boundary_faces"].get<int>()) << "step " << i;
+    EXPECT_TRUE(live[i]["wider_repair"].is_boolean());
   }
   const json report = json::parse(slurp(session() / "report.json"));
   EXPECT_EQ(live.back()["points"], report["boundary"]["distinct_points"]);
