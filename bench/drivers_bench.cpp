@@ -19,6 +19,7 @@
 //
 // Issue 6 sets no performance targets; these numbers show where the time of
 // the simulated station goes.
+#include "bench/benchmark_main.h"
 #include "drivers/stepper_turntable.h"
 #include "drivers/trapezoid_ramp.h"
 #include "drivers/usb_controller.h"
@@ -27,7 +28,6 @@
 #include "sim/devices/sim_gpio_chip.h"
 #include "sim/devices/sim_usb_board.h"
 #include "sim/devices/virtual_clock.h"
-#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 #include <cmath>

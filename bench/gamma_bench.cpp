@@ -8,10 +8,10 @@
 // Arguments: shape (0 uniform in the unit square / cube, 1 on a circle /
 // sphere of radius 1 with Gaussian noise of 1% of the radius, the surface
 // samples a scan gives), points. Parameter γ(0, −0.5).
+#include "bench/benchmark_main.h"
 #include "reconstruct/gamma_graph.h"
 
 #include "../tests/reconstruct/gamma_brute_force.h"
-#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 

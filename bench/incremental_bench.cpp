@@ -27,8 +27,8 @@
 // the triangle recall of the from-scratch result and of the incremental one
 // after the last batch, in scan and in random order, and the wider repairs.
 #include "core/io/mesh_io.h"
-#include "core/process_memory.h"
 #include "core/mesh_topology.h"
+#include "core/process_memory.h"
 #include "core/triangle_recall.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "reconstruct/incremental_constriction.h"

@@ -5,9 +5,9 @@
 //   build/bench/io_bench [--benchmark_filter=Read]
 //
 // The mesh is an icosphere with 655,362 vertices and 1,310,720 triangles.
+#include "bench/benchmark_main.h"
 #include "core/io/mesh_io.h"
 #include "sim/shapes.h"
-#include "bench/benchmark_main.h"
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Simple_cartesian.h>

@@ -8,11 +8,11 @@
 //
 // The pair is a rendered chalice on the simulated turntable with default
 // noise, so the noise estimate, rejections and fits see realistic rows.
+#include "bench/benchmark_main.h"
 #include "acquisition/laser_line.h"
 #include "sim/scene_renderer.h"
 #include "sim/surface_of_revolution.h"
 #include "sim/turntable_rig.h"
-#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>

@@ -5,11 +5,11 @@
 //
 // Points: 3D uniform on an ellipsoid with radii (3, 2, 1); 2D on a closed
 // star-shaped curve and on the chalice silhouette; seeded.
+#include "bench/benchmark_main.h"
 #include "reconstruct/boundary_reconstruction.h"
 #include "sim/outlines.h"
 #include "sim/random.h"
 #include "sim/sampling.h"
-#include "bench/benchmark_main.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>

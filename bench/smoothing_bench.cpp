@@ -12,6 +12,7 @@
 // sign condition holds (the surfaces are G¹: Verification reports the largest
 // normal angle). Counters: triangles per second
 // (one core), bytes of patch data per macro triangle.
+#include "bench/benchmark_main.h"
 #include "sim/random.h"
 #include "sim/shapes.h"
 #include "smoothing/macro_patches.h"
@@ -22,7 +23,6 @@
 #include "smoothing/three_split.h"
 #include "smoothing/two_split.h"
 #include "smoothing/vertex_normals.h"
-#include "bench/benchmark_main.h"
 
 #include <benchmark/benchmark.h>
 

@@ -12,9 +12,10 @@ namespace scanstation {
 /// once it is copied to index arrays. By default glibc returns every block
 /// over 128 KiB (and up to 32 MiB, by its dynamic threshold) with munmap,
 /// so the next stage's arrays fault in fresh pages, and a 4 KiB page fault
-/// costs about 11 µs on the machines measured: a third of a cold
+/// costs about 11 µs on the machines measured: about a quarter of a cold
 /// `scanstation reconstruct` of bunny00 (37.7k points) was page faults
-/// (docs/design.md, "Fresh memory").
+/// (docs/design.md, reconstruction pipeline, "Freed memory stays with the
+/// process").
 ///
 /// Process-wide: call it first thing in main, before any thread starts.
 /// The resident memory then stays at its peak until the process ends.
