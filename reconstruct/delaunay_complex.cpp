@@ -1,11 +1,11 @@
 #include "reconstruct/delaunay_complex.h"
 
 #include "core/errors.h"
+#include "reconstruct/spatial_order_2.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/property_map.h>
 #include <CGAL/spatial_sort.h>
@@ -52,9 +52,17 @@ Delaunay3::Cell_handle near(Delaunay3::Vertex_handle v) { return v == Delaunay3:
 template <typename Point>
 using FirstOfPair = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
 
-template <typename Traits, typename Triangulation, typename Point, typename Repeat>
+// 2D sorts on both cores: the sort is a seventh of a 2D reconstruction, and
+// nothing else runs beside it (3D hashes the points on the other core
+// meanwhile, and a parallel sort there measured no faster; docs/design.md).
+void spatial_order(std::vector<std::pair<Kernel::Point_2, int>>& input) { parallel_spatial_sort(input); }
+void spatial_order(std::vector<std::pair<Kernel::Point_3, int>>& input) {
+  CGAL::spatial_sort(input.begin(), input.end(), CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>());
+}
+
+template <typename Triangulation, typename Point, typename Repeat>
 void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int>>& input, Repeat&& repeat) {
-  CGAL::spatial_sort(input.begin(), input.end(), Traits(FirstOfPair<Point>()));
+  spatial_order(input);
   typename Triangulation::Vertex_handle hint;
   for (const auto& [point, index] : input) {
     const auto before = dt.number_of_vertices();
@@ -104,8 +112,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
     input.reserve(static_cast<std::size_t>(P.rows()));
     for (Eigen::Index i = 0; i < P.rows(); ++i)
       input.emplace_back(Kernel::Point_2(P(i, 0) * scale, P(i, 1) * scale), static_cast<int>(i));
-    insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_2<Kernel, FirstOfPair<Kernel::Point_2>>>(
-        dt, input, [&](int row, Delaunay2::Vertex_handle v) { repeats.emplace_back(row, v); });
+    insert_in_spatial_order(dt, input, [&](int row, Delaunay2::Vertex_handle v) { repeats.emplace_back(row, v); });
   }
   const Eigen::Index distinct = P.rows() - static_cast<Eigen::Index>(repeats.size());
   require_points(distinct, 3, "polygon");
@@ -180,8 +187,7 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen
   for (Eigen::Index i = 0; i < P.rows(); ++i)
     input.emplace_back(Kernel::Point_3(P(i, 0) * scale, P(i, 1) * scale, P(i, 2) * scale), static_cast<int>(i));
   Delaunay3 dt;
-  insert_in_spatial_order<CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>>(
-      dt, input, [](int, Delaunay3::Vertex_handle) {});
+  insert_in_spatial_order(dt, input, [](int, Delaunay3::Vertex_handle) {});
   std::vector<std::pair<Kernel::Point_3, int>>().swap(input);  // the copy below is the memory peak
   if (dt.dimension() < 3)
     throw InvalidInput(std::string("all points lie ") + (dt.dimension() < 2 ? "on one line" : "in one plane") +
