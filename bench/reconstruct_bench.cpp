@@ -4,9 +4,13 @@
 //   build/bench/reconstruct_bench [--benchmark_filter=/1000000]
 //
 // Points: 3D uniform on an ellipsoid with radii (3, 2, 1); 2D on a closed
-// star-shaped curve and on the chalice silhouette; seeded.
+// star-shaped curve and on the chalice silhouette; seeded. 2D has two
+// floors: CGAL's range construction (its sort on one core) and
+// CgalDelaunay2Sorted, the points sorted on both cores as the
+// reconstruction sorts them, then inserted.
 #include "bench/benchmark_main.h"
 #include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/spatial_order_2.h"
 #include "sim/outlines.h"
 #include "sim/random.h"
 #include "sim/sampling.h"
@@ -19,6 +23,8 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -101,6 +107,23 @@ void CgalDelaunay2(benchmark::State& state) {
   }
 }
 
+// The same triangulation with the points sorted on both cores first, as
+// reconstruct_curve sorts them (parallel_spatial_sort), then inserted one
+// by one, each located from the last: the floor when both cores may work.
+void CgalDelaunay2Sorted(benchmark::State& state) {
+  const Eigen::MatrixX2d& P = curve_points(static_cast<int>(state.range(0)), state.range(1));
+  for (auto _ : state) {
+    std::vector<std::pair<Kernel::Point_2, int>> points;
+    points.reserve(static_cast<std::size_t>(P.rows()));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(Kernel::Point_2(P(i, 0), P(i, 1)), static_cast<int>(i));
+    parallel_spatial_sort(points);
+    CGAL::Delaunay_triangulation_2<Kernel> dt;
+    CGAL::Delaunay_triangulation_2<Kernel>::Vertex_handle hint;
+    for (const auto& [point, row] : points) hint = dt.insert(point, hint == nullptr ? nullptr : hint->face());
+    benchmark::DoNotOptimize(dt.number_of_faces());
+  }
+}
+
 void Reconstruct2(benchmark::State& state) {
   const Eigen::MatrixX2d& P = curve_points(static_cast<int>(state.range(0)), state.range(1));
   double delaunay = 0, constriction = 0;
@@ -123,6 +146,7 @@ const bool registered_2d = [] {
   for (const int shape : {0, 1})
     for (const int n : {100000, 1000000}) {
       benchmark::RegisterBenchmark("CgalDelaunay2", CgalDelaunay2)->Args({shape, n})->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark("CgalDelaunay2Sorted", CgalDelaunay2Sorted)->Args({shape, n})->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
       benchmark::RegisterBenchmark("Reconstruct2", Reconstruct2)->Args({shape, n})->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
     }
   return true;

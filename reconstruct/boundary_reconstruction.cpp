@@ -6,13 +6,15 @@
 #include "reconstruct/boundary_surface.h"
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <exception>
+#include <limits>
+#include <numeric>
 #include <string>
 #include <thread>
 
@@ -183,6 +185,28 @@ void to_output_numbering(const std::vector<int>& output, SurfaceReconstruction& 
   out.source = std::move(source);
 }
 
+// The kept cells' rows of dt.cells, in cell order: counted and copied by
+// blocks of cells on all cores (a triangulation of the inside, §5.8).
+template <int D>
+Eigen::Matrix<int, Eigen::Dynamic, D + 1> kept_cells(const DelaunayComplex<D>& dt, const std::vector<char>& kept) {
+  constexpr std::size_t kBlock = std::size_t{1} << 15;
+  const std::size_t blocks = (kept.size() + kBlock - 1) / kBlock;
+  std::vector<Eigen::Index> offset(blocks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    const auto first = kept.begin() + static_cast<std::ptrdiff_t>(b * kBlock);
+    offset[b + 1] = std::count_if(first, first + static_cast<std::ptrdiff_t>(std::min(kBlock, kept.size() - b * kBlock)),
+                                  [](char k) { return k != 0; });
+  });
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  Eigen::Matrix<int, Eigen::Dynamic, D + 1> out(offset.back(), D + 1);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    Eigen::Index row = offset[b];
+    for (std::size_t k = b * kBlock; k < std::min(kept.size(), (b + 1) * kBlock); ++k)
+      if (kept[k]) out.row(row++) = dt.cells.row(static_cast<Eigen::Index>(k));
+  });
+  return out;
+}
+
 template <int D>
 void fill_statistics(BoundaryStatistics& s, const DelaunayComplex<D>& dt, Constriction<D>& c) {
   s.delaunay_cells = static_cast<std::size_t>(dt.cells.rows());
@@ -295,12 +319,9 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
     s.unfolded = u.retriangulated;
     s.unfold_seconds = seconds_since(start);
   }
-  std::vector<Eigen::Index> kept;
-  for (std::size_t k = 0; k < c.kept.size(); ++k)
-    if (c.kept[k]) kept.push_back(static_cast<Eigen::Index>(k));
-  out.interior.resize(static_cast<Eigen::Index>(kept.size()), 4);
-  for (std::size_t k = 0; k < kept.size(); ++k) out.interior.row(static_cast<Eigen::Index>(k)) = dt.cells.row(kept[k]);
-  if (s.carved > 0 || s.flips > 0 || s.unfolded > 0) out.interior.resize(0, 4);
+  // Carved, flipped or unfolded triangles are no faces of the kept cells:
+  // then no interior triangulation (not even made, as on most real meshes).
+  if (s.carved == 0 && s.flips == 0 && s.unfolded == 0) out.interior = kept_cells(dt, c.kept);
   s.enclosed_measure = enclosed_volume(out.mesh.vertices.positions, out.mesh.faces);
   fill_statistics(s, dt, c);
   s.kept_faces_on_boundary = faces_on(options.constriction.keep, out.mesh.faces);
@@ -380,12 +401,7 @@ CurveReconstruction reconstruct_curve(const Eigen::MatrixX2d& points, const Reco
   for (std::size_t k = 0; k < out.order.size(); ++k)
     out.polygon.vertices.row(static_cast<Eigen::Index>(k)) = out.points.row(out.order[k]);
 
-  if (s.carved == 0) {  // carved triangles overlap Delaunay cells: then no interior triangulation
-    out.interior.resize(std::count_if(c.kept.begin(), c.kept.end(), [](char k) { return k != 0; }), 3);
-    Eigen::Index row = 0;
-    for (std::size_t k = 0; k < c.kept.size(); ++k)
-      if (c.kept[k]) out.interior.row(row++) = dt.cells.row(static_cast<Eigen::Index>(k));
-  }
+  if (s.carved == 0) out.interior = kept_cells(dt, c.kept);  // carved triangles overlap Delaunay cells: then none
   s.enclosed_measure = twice_signed_area(out.polygon) / 2.0;
   fill_statistics(s, dt, c);
   out.delaunay = std::move(triangulated.dt.cells);  // dt is not used after this

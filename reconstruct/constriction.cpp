@@ -5,15 +5,19 @@
 #include "reconstruct/quaternary_heap.h"
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
+#include <utility>
 
 namespace scanstation {
 
@@ -430,6 +434,10 @@ class Constrictor {
 // Two passes over the cells, one to count the boundary faces and one to
 // write them: a growing list and its copy into the matrix allocated about
 // three times the memory (no gain measurable within the machine's noise).
+// Both passes run on all cores, over blocks of cells: each block's faces are
+// counted, then written from the block's offset, so the rows come in cell
+// order as from one pass (at 1M points in 2D the passes were a thirtieth of
+// the reconstruction, with the other core idle).
 template <int D>
 Constriction<D> pruned_boundary_of(const DelaunayComplex<D>& dt, std::vector<char> kept) {
   Constriction<D> out;
@@ -437,30 +445,43 @@ Constriction<D> pruned_boundary_of(const DelaunayComplex<D>& dt, std::vector<cha
     const int n = dt.neighbors(c, i);
     return n < 0 || !kept[static_cast<std::size_t>(n)];
   };
-  Eigen::Index faces = 0;
-  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
-    if (!kept[static_cast<std::size_t>(c)]) {
-      ++out.removed_cells;
-      continue;
-    }
-    for (int i = 0; i <= D; ++i) faces += boundary_face(c, i);
-  }
-  out.boundary.resize(faces, D);
-  std::vector<char> on_boundary(static_cast<std::size_t>(dt.points.rows()), 0);
-  Eigen::Index row = 0;
-  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
-    if (!kept[static_cast<std::size_t>(c)]) continue;
-    for (int i = 0; i <= D; ++i) {
-      if (!boundary_face(c, i)) continue;
-      if constexpr (D == 2) {
-        out.boundary.row(row) << dt.cells(c, (i + 1) % 3), dt.cells(c, (i + 2) % 3);
-      } else {
-        out.boundary.row(row) << dt.cells(c, kFace3[i][0]), dt.cells(c, kFace3[i][1]), dt.cells(c, kFace3[i][2]);
+  constexpr Eigen::Index kBlock = Eigen::Index{1} << 15;
+  const Eigen::Index cells = dt.cells.rows(), blocks = (cells + kBlock - 1) / kBlock;
+  const auto block_cells = [&](Eigen::Index b) { return std::pair(b * kBlock, std::min(cells, (b + 1) * kBlock)); };
+  std::vector<Eigen::Index> offset(static_cast<std::size_t>(blocks) + 1, 0), removed(static_cast<std::size_t>(blocks), 0);
+  tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index b) {
+    Eigen::Index faces = 0, gone = 0;
+    for (auto [c, end] = block_cells(b); c < end; ++c) {
+      if (!kept[static_cast<std::size_t>(c)]) {
+        ++gone;
+        continue;
       }
-      for (int k = 0; k < D; ++k) on_boundary[static_cast<std::size_t>(out.boundary(row, k))] = 1;
-      ++row;
+      for (int i = 0; i <= D; ++i) faces += boundary_face(c, i);
     }
-  }
+    offset[static_cast<std::size_t>(b) + 1] = faces;
+    removed[static_cast<std::size_t>(b)] = gone;
+  });
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  out.removed_cells = std::accumulate(removed.begin(), removed.end(), Eigen::Index{0});
+  out.boundary.resize(offset.back(), D);
+  std::vector<char> on_boundary(static_cast<std::size_t>(dt.points.rows()), 0);
+  tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index b) {
+    Eigen::Index row = offset[static_cast<std::size_t>(b)];
+    for (auto [c, end] = block_cells(b); c < end; ++c) {
+      if (!kept[static_cast<std::size_t>(c)]) continue;
+      for (int i = 0; i <= D; ++i) {
+        if (!boundary_face(c, i)) continue;
+        if constexpr (D == 2) {
+          out.boundary.row(row) << dt.cells(c, (i + 1) % 3), dt.cells(c, (i + 2) % 3);
+        } else {
+          out.boundary.row(row) << dt.cells(c, kFace3[i][0]), dt.cells(c, kFace3[i][1]), dt.cells(c, kFace3[i][2]);
+        }
+        for (int k = 0; k < D; ++k)  // blocks share points: every write is the same 1
+          std::atomic_ref<char>(on_boundary[static_cast<std::size_t>(out.boundary(row, k))]).store(1, std::memory_order_relaxed);
+        ++row;
+      }
+    }
+  });
   out.kept = std::move(kept);
   for (Eigen::Index v = 0; v < dt.points.rows(); ++v)
     if (!on_boundary[static_cast<std::size_t>(v)]) out.interior_vertices.push_back(static_cast<int>(v));

@@ -13,6 +13,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <tbb/parallel_for.h>
 
 #include <string>
 #include <utility>
@@ -73,6 +74,41 @@ void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int
       repeat(index, hint);
     }
   }
+}
+
+// Numbers the finite cells (faces in 2D) in CGAL's storage order, infinite
+// ones −1 (so a neighbour's number needs no test of its vertices), then
+// copies their points' and neighbours' numbers into `out`: one pass for the
+// numbers (a neighbour may come later in that order), then the copy on all
+// cores, each block of cells from the iterator the first pass kept at its
+// start (at 1M points in 2D the copy was a twentieth of the reconstruction,
+// with the other core idle).
+template <int D, typename Triangulation, typename Iterator>
+void copy_cells(const Triangulation& dt, Iterator begin, Iterator end, DelaunayComplex<D>& out) {
+  constexpr int kBlock = 1 << 15;
+  std::vector<Iterator> block_start;
+  int id = 0;
+  for (Iterator c = begin; c != end; ++c) {
+    if (dt.is_infinite(c)) {
+      c->info() = -1;
+      continue;
+    }
+    if (id % kBlock == 0) block_start.push_back(c);
+    c->info() = id++;
+  }
+  block_start.push_back(end);
+  out.cells.resize(id, D + 1);
+  out.neighbors.resize(id, D + 1);
+  tbb::parallel_for(std::size_t{0}, block_start.size() - 1, [&](std::size_t b) {
+    for (Iterator c = block_start[b]; c != block_start[b + 1]; ++c) {
+      const int cell = c->info();
+      if (cell < 0) continue;
+      for (int i = 0; i <= D; ++i) {
+        out.cells(cell, i) = c->vertex(i)->info();
+        out.neighbors(cell, i) = c->neighbor(i)->info();
+      }
+    }
+  });
 }
 
 using Repeats2 = std::vector<std::pair<int, Delaunay2::Vertex_handle>>;
@@ -154,20 +190,7 @@ DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen
   }
   first = std::move(spatial_first);
 
-  // Cells numbered in CGAL's storage order, infinite faces −1: one pass for
-  // the numbers, one to copy (a neighbour may come later in that order).
-  int id = 0;
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = dt.is_infinite(f) ? -1 : id++;
-  out.cells.resize(id, 3);
-  out.neighbors.resize(id, 3);
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
-    const int c = f->info();
-    if (c < 0) continue;
-    for (int i = 0; i < 3; ++i) {
-      out.cells(c, i) = f->vertex(i)->info();
-      out.neighbors(c, i) = f->neighbor(i)->info();
-    }
-  }
+  copy_cells(dt, dt.all_faces_begin(), dt.all_faces_end(), out);
   return out;
 }
 
@@ -203,21 +226,7 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen
     out.points.row(k) = P.row(v->info()) * scale;
     v->info() = k++;
   }
-  // Cells numbered in CGAL's storage order, infinite cells −1 (so a
-  // neighbour's number needs no test of its vertices): one pass for the
-  // numbers, one to copy.
-  int id = 0;
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = dt.is_infinite(c) ? -1 : id++;
-  out.cells.resize(id, 4);
-  out.neighbors.resize(id, 4);
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    const int cell = c->info();
-    if (cell < 0) continue;
-    for (int i = 0; i < 4; ++i) {
-      out.cells(cell, i) = c->vertex(i)->info();
-      out.neighbors(cell, i) = c->neighbor(i)->info();
-    }
-  }
+  copy_cells(dt, dt.all_cells_begin(), dt.all_cells_end(), out);
   return out;
 }
 

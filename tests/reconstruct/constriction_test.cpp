@@ -51,6 +51,69 @@ Eigen::MatrixX3d random_ellipsoid(Eigen::Index n, std::uint64_t seed) {
 
 // Points sampled at random over the relief mask (the thesis' Figure 5.6), with
 // and without noise of 0.1% of its size: valid through every point.
+// The copy of CGAL's triangulation and the list of boundary faces run by
+// blocks of 32768 cells on all cores (delaunay_complex.cpp, constriction.cpp):
+// on complexes of many blocks, every neighbour relation goes both ways across
+// a shared face, and the boundary of random kept flags equals the one pass
+// over the cells in order, rows, removed count and interior points alike.
+template <int D>
+void expect_blocks_match_one_pass(const DelaunayComplex<D>& dt, std::uint64_t seed) {
+  ASSERT_GT(dt.cells.rows(), 4 * 32768);
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+    for (int i = 0; i <= D; ++i) {
+      const int n = dt.neighbors(c, i);
+      if (n < 0) continue;
+      int back = 0, shared = 0;
+      for (int j = 0; j <= D; ++j) back += dt.neighbors(n, j) == c;
+      for (int j = 0; j <= D; ++j)
+        for (int k = 0; k <= D; ++k) shared += k != i && dt.cells(c, k) == dt.cells(n, j);
+      ASSERT_EQ(back, 1) << "cell " << c << " face " << i;
+      ASSERT_EQ(shared, D) << "cell " << c << " face " << i;
+    }
+  sim::Random random(seed);
+  std::vector<char> kept(static_cast<std::size_t>(dt.cells.rows()));
+  for (char& k : kept) k = random.uniform() < 0.7;
+  const Constriction<D> blocks = pruned_boundary(dt, kept);
+  std::vector<std::array<int, D>> rows;
+  std::vector<char> on(static_cast<std::size_t>(dt.points.rows()), 0);
+  std::size_t removed = 0;
+  for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
+    if (!kept[static_cast<std::size_t>(c)]) {
+      ++removed;
+      continue;
+    }
+    for (int i = 0; i <= D; ++i) {
+      const int n = dt.neighbors(c, i);
+      if (n >= 0 && kept[static_cast<std::size_t>(n)]) continue;
+      std::array<int, D> row{};
+      for (int k = 0; k < D; ++k) {
+        row[static_cast<std::size_t>(k)] = D == 2 ? dt.cells(c, (i + 1 + k) % 3) : dt.cells(c, kFace3[i][k]);
+        on[static_cast<std::size_t>(row[static_cast<std::size_t>(k)])] = 1;
+      }
+      rows.push_back(row);
+    }
+  }
+  ASSERT_EQ(blocks.boundary.rows(), static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (int k = 0; k < D; ++k) ASSERT_EQ(blocks.boundary(static_cast<Eigen::Index>(r), k), rows[r][static_cast<std::size_t>(k)]) << "row " << r;
+  EXPECT_EQ(blocks.removed_cells, removed);
+  std::vector<int> inside;
+  for (std::size_t v = 0; v < on.size(); ++v)
+    if (!on[v]) inside.push_back(static_cast<int>(v));
+  EXPECT_EQ(blocks.interior_vertices, inside);
+  EXPECT_FALSE(inside.empty());
+}
+
+TEST(DelaunayComplex, BlocksOfCellsMatchOnePassInOrder) {
+  sim::Random random(41);
+  Eigen::MatrixX3d ball(30000, 3);
+  for (Eigen::Index i = 0; i < ball.rows(); ++i) ball.row(i) << random.uniform(), random.uniform(), random.uniform();
+  expect_blocks_match_one_pass<3>(delaunay_complex(ball), 5);
+  Eigen::MatrixX2d square(100000, 2);
+  for (Eigen::Index i = 0; i < square.rows(); ++i) square.row(i) << random.uniform(), random.uniform();
+  expect_blocks_match_one_pass<2>(delaunay_complex(square), 6);
+}
+
 TEST(Constriction3, SampledReliefMaskGivesAValidBoundaryThroughAllPoints) {
   const TriangleMesh mask = sim::relief_mask(30, 72);
   for (const double noise : {0.0, 0.002}) {
