@@ -2,7 +2,14 @@
 #include "core/io/mesh_io.h"
 #include "core/mesh_topology.h"
 #include "sim/shapes.h"
+#include "sim/random.h"
 #include "test_support.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <vector>
 
 namespace scanstation {
 namespace {
@@ -110,6 +117,92 @@ TEST(MeshTopology, DegenerateDuplicateAndIsolated) {
 
 // Genus of real closed meshes from Debian's libcgal-demo: the tori as their
 // names say; the elephant has three handles (χ = 2775 − 8337 + 5558 = −4).
+// The counts by their definitions, with maps and sets (quadratic at worst),
+// against mesh_topology's sorted passes, on random triangle soups over a few
+// vertices: non-manifold edges and vertices, duplicates and degenerate faces
+// are everywhere there.
+struct Counts {
+  std::size_t edges = 0, boundary_edges = 0, non_manifold_edges = 0, non_manifold_vertices = 0, duplicate_faces = 0,
+              degenerate_faces = 0;
+};
+Counts counts_by_definition(const Eigen::MatrixX3i& F, int vertices) {
+  Counts c;
+  std::map<std::pair<int, int>, int> faces_at_edge;
+  std::set<std::array<int, 3>> seen;
+  std::vector<std::vector<int>> faces_at(static_cast<std::size_t>(vertices));
+  for (int f = 0; f < F.rows(); ++f) {
+    std::array<int, 3> v{F(f, 0), F(f, 1), F(f, 2)};
+    for (int k = 0; k < 3; ++k) {
+      const int a = v[static_cast<std::size_t>(k)], b = v[static_cast<std::size_t>((k + 1) % 3)];
+      if (a != b) ++faces_at_edge[{std::min(a, b), std::max(a, b)}];
+      faces_at[static_cast<std::size_t>(a)].push_back(f);
+    }
+    std::sort(v.begin(), v.end());
+    c.degenerate_faces += v[0] == v[1] || v[1] == v[2];
+    c.duplicate_faces += !seen.insert(v).second;
+  }
+  for (const auto& [edge, n] : faces_at_edge) {
+    ++c.edges;
+    c.boundary_edges += n == 1;
+    c.non_manifold_edges += n > 2;
+  }
+  // The points next to v in face f: the corners' neighbours (v itself too
+  // where f repeats v).
+  const auto next_to = [&](int f, int v) {
+    std::set<int> out;
+    for (int k = 0; k < 3; ++k)
+      if (F(f, k) == v) out.insert({F(f, (k + 1) % 3), F(f, (k + 2) % 3)});
+    return out;
+  };
+  for (int v = 0; v < vertices; ++v) {  // fans: faces at v joined through an edge (v, w) they both have
+    std::vector<int> fs = faces_at[static_cast<std::size_t>(v)];
+    std::sort(fs.begin(), fs.end());
+    fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
+    if (fs.empty()) continue;
+    std::vector<int> fan(fs.size(), -1);
+    int fans = 0;
+    for (std::size_t seed = 0; seed < fs.size(); ++seed) {
+      if (fan[seed] >= 0) continue;
+      ++fans;
+      std::vector<std::size_t> stack{seed};
+      fan[seed] = fans;
+      while (!stack.empty()) {
+        const int f = fs[stack.back()];
+        stack.pop_back();
+        for (std::size_t g = 0; g < fs.size(); ++g) {
+          if (fan[g] >= 0) continue;
+          bool shared = false;
+          for (const int w : next_to(f, v)) shared = shared || next_to(fs[g], v).count(w) > 0;
+          if (shared) {
+            fan[g] = fans;
+            stack.push_back(g);
+          }
+        }
+      }
+    }
+    c.non_manifold_vertices += fans > 1;
+  }
+  return c;
+}
+
+TEST(MeshTopology, SortedPassesAgreeWithTheDefinitionsOnRandomSoups) {
+  sim::Random random(12);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int vertices = 4 + trial % 12;
+    Eigen::MatrixX3i F(1 + trial % 40, 3);
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) F(f, k) = std::min(vertices - 1, static_cast<int>(random.uniform() * vertices));
+    const MeshTopology t = mesh_topology(F, vertices);
+    const Counts c = counts_by_definition(F, vertices);
+    EXPECT_EQ(t.edges, c.edges) << "trial " << trial;
+    EXPECT_EQ(t.boundary_edges, c.boundary_edges) << "trial " << trial;
+    EXPECT_EQ(t.non_manifold_edges, c.non_manifold_edges) << "trial " << trial;
+    EXPECT_EQ(t.non_manifold_vertices, c.non_manifold_vertices) << "trial " << trial;
+    EXPECT_EQ(t.duplicate_faces, c.duplicate_faces) << "trial " << trial;
+    EXPECT_EQ(t.degenerate_faces, c.degenerate_faces) << "trial " << trial;
+  }
+}
+
 TEST(MeshTopology, RealMeshesHaveTheirKnownGenus) {
   const std::vector<std::pair<std::string, int>> expected = {
       {"meshes/elephant.off", 3}, {"meshes/sphere.off", 0},    {"meshes/double-torus-example.off", 2},
