@@ -4,9 +4,9 @@
 #include "core/mesh_measures.h"
 #include "core/unique_points.h"
 #include "reconstruct/boundary_surface.h"
+#include "reconstruct/cell_blocks.h"
 
 #include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -189,19 +189,18 @@ void to_output_numbering(const std::vector<int>& output, SurfaceReconstruction& 
 // blocks of cells on all cores (a triangulation of the inside, §5.8).
 template <int D>
 Eigen::Matrix<int, Eigen::Dynamic, D + 1> kept_cells(const DelaunayComplex<D>& dt, const std::vector<char>& kept) {
-  constexpr std::size_t kBlock = std::size_t{1} << 15;
-  const std::size_t blocks = (kept.size() + kBlock - 1) / kBlock;
+  const std::size_t blocks = (kept.size() + kCellBlock - 1) / kCellBlock;
   std::vector<Eigen::Index> offset(blocks + 1, 0);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    const auto first = kept.begin() + static_cast<std::ptrdiff_t>(b * kBlock);
-    offset[b + 1] = std::count_if(first, first + static_cast<std::ptrdiff_t>(std::min(kBlock, kept.size() - b * kBlock)),
+  for_each_block(blocks, [&](std::size_t b) {
+    const auto first = kept.begin() + static_cast<std::ptrdiff_t>(b * kCellBlock);
+    offset[b + 1] = std::count_if(first, first + static_cast<std::ptrdiff_t>(std::min(kCellBlock, kept.size() - b * kCellBlock)),
                                   [](char k) { return k != 0; });
   });
   std::partial_sum(offset.begin(), offset.end(), offset.begin());
   Eigen::Matrix<int, Eigen::Dynamic, D + 1> out(offset.back(), D + 1);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+  for_each_block(blocks, [&](std::size_t b) {
     Eigen::Index row = offset[b];
-    for (std::size_t k = b * kBlock; k < std::min(kept.size(), (b + 1) * kBlock); ++k)
+    for (std::size_t k = b * kCellBlock; k < std::min(kept.size(), (b + 1) * kCellBlock); ++k)
       if (kept[k]) out.row(row++) = dt.cells.row(static_cast<Eigen::Index>(k));
   });
   return out;

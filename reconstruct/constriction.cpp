@@ -1,11 +1,11 @@
 #include "reconstruct/constriction.h"
 
 #include "core/errors.h"
+#include "reconstruct/cell_blocks.h"
 #include "reconstruct/gamma_indicator.h"
 #include "reconstruct/quaternary_heap.h"
 
 #include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -445,11 +445,15 @@ Constriction<D> pruned_boundary_of(const DelaunayComplex<D>& dt, std::vector<cha
     const int n = dt.neighbors(c, i);
     return n < 0 || !kept[static_cast<std::size_t>(n)];
   };
-  constexpr Eigen::Index kBlock = Eigen::Index{1} << 15;
-  const Eigen::Index cells = dt.cells.rows(), blocks = (cells + kBlock - 1) / kBlock;
-  const auto block_cells = [&](Eigen::Index b) { return std::pair(b * kBlock, std::min(cells, (b + 1) * kBlock)); };
-  std::vector<Eigen::Index> offset(static_cast<std::size_t>(blocks) + 1, 0), removed(static_cast<std::size_t>(blocks), 0);
-  tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index b) {
+  const auto block = static_cast<Eigen::Index>(kCellBlock);
+  const Eigen::Index cells = dt.cells.rows();
+  const auto blocks = static_cast<std::size_t>((cells + block - 1) / block);
+  const auto block_cells = [&](std::size_t b) {
+    const auto first = static_cast<Eigen::Index>(b) * block;
+    return std::pair(first, std::min(cells, first + block));
+  };
+  std::vector<Eigen::Index> offset(blocks + 1, 0), removed(blocks, 0);
+  for_each_block(blocks, [&](std::size_t b) {
     Eigen::Index faces = 0, gone = 0;
     for (auto [c, end] = block_cells(b); c < end; ++c) {
       if (!kept[static_cast<std::size_t>(c)]) {
@@ -458,15 +462,15 @@ Constriction<D> pruned_boundary_of(const DelaunayComplex<D>& dt, std::vector<cha
       }
       for (int i = 0; i <= D; ++i) faces += boundary_face(c, i);
     }
-    offset[static_cast<std::size_t>(b) + 1] = faces;
-    removed[static_cast<std::size_t>(b)] = gone;
+    offset[b + 1] = faces;
+    removed[b] = gone;
   });
   std::partial_sum(offset.begin(), offset.end(), offset.begin());
   out.removed_cells = std::accumulate(removed.begin(), removed.end(), Eigen::Index{0});
   out.boundary.resize(offset.back(), D);
   std::vector<char> on_boundary(static_cast<std::size_t>(dt.points.rows()), 0);
-  tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index b) {
-    Eigen::Index row = offset[static_cast<std::size_t>(b)];
+  for_each_block(blocks, [&](std::size_t b) {
+    Eigen::Index row = offset[b];
     for (auto [c, end] = block_cells(b); c < end; ++c) {
       if (!kept[static_cast<std::size_t>(c)]) continue;
       for (int i = 0; i <= D; ++i) {

@@ -1,6 +1,7 @@
 #include "reconstruct/delaunay_complex.h"
 
 #include "core/errors.h"
+#include "reconstruct/cell_blocks.h"
 #include "reconstruct/spatial_order_2.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -13,7 +14,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
-#include <tbb/parallel_for.h>
 
 #include <string>
 #include <utility>
@@ -79,13 +79,12 @@ void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int
 // Numbers the finite cells (faces in 2D) in CGAL's storage order, infinite
 // ones −1 (so a neighbour's number needs no test of its vertices), then
 // copies their points' and neighbours' numbers into `out`: one pass for the
-// numbers (a neighbour may come later in that order), then the copy on all
-// cores, each block of cells from the iterator the first pass kept at its
+// numbers (a neighbour may come later in that order), then the copy by
+// blocks (cell_blocks.h), each from the iterator the first pass kept at its
 // start (at 1M points in 2D the copy was a twentieth of the reconstruction,
 // with the other core idle).
 template <int D, typename Triangulation, typename Iterator>
 void copy_cells(const Triangulation& dt, Iterator begin, Iterator end, DelaunayComplex<D>& out) {
-  constexpr int kBlock = 1 << 15;
   std::vector<Iterator> block_start;
   int id = 0;
   for (Iterator c = begin; c != end; ++c) {
@@ -93,13 +92,13 @@ void copy_cells(const Triangulation& dt, Iterator begin, Iterator end, DelaunayC
       c->info() = -1;
       continue;
     }
-    if (id % kBlock == 0) block_start.push_back(c);
+    if (static_cast<std::size_t>(id) % kCellBlock == 0) block_start.push_back(c);
     c->info() = id++;
   }
   block_start.push_back(end);
   out.cells.resize(id, D + 1);
   out.neighbors.resize(id, D + 1);
-  tbb::parallel_for(std::size_t{0}, block_start.size() - 1, [&](std::size_t b) {
+  for_each_block(block_start.size() - 1, [&](std::size_t b) {
     for (Iterator c = block_start[b]; c != block_start[b + 1]; ++c) {
       const int cell = c->info();
       if (cell < 0) continue;
