@@ -15,7 +15,12 @@ namespace {
 
 class UnionFind {
  public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::size_t{0}); }
+  explicit UnionFind(std::size_t n = 0) { reset(n); }
+  // n singletons again, reusing the storage (one union-find per vertex's fan).
+  void reset(std::size_t n) {
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
+  }
   std::size_t find(std::size_t x) {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
@@ -92,29 +97,19 @@ std::size_t count_non_manifold_vertices(const Eigen::MatrixX3i& F, std::size_t v
       [](const Corner& a, const Corner& b) { return std::tie(a.other, a.face) < std::tie(b.other, b.face); }, start);
   std::size_t count = 0;
   std::vector<int> faces;
-  std::vector<std::size_t> parent;
-  const auto find = [&](std::size_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
+  UnionFind fans;
   for (std::size_t v = 0; v < vertex_count; ++v) {
     if (start[v] == start[v + 1]) continue;
     faces.clear();
     for (std::size_t i = start[v]; i < start[v + 1]; ++i) faces.push_back(corners[i].face);
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-    parent.resize(faces.size());
-    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    fans.reset(faces.size());
     std::size_t groups = faces.size();
     const auto local = [&](int f) { return static_cast<std::size_t>(std::lower_bound(faces.begin(), faces.end(), f) - faces.begin()); };
     for (std::size_t i = start[v] + 1; i < start[v + 1]; ++i)
-      if (corners[i].other == corners[i - 1].other) {
-        const std::size_t a = find(local(corners[i].face)), b = find(local(corners[i - 1].face));
-        if (a != b) {
-          parent[a] = b;
-          --groups;
-        }
-      }
+      if (corners[i].other == corners[i - 1].other && fans.unite(local(corners[i].face), local(corners[i - 1].face)))
+        --groups;
     if (groups > 1) ++count;
   }
   return count;

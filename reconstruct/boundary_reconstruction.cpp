@@ -14,7 +14,6 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <numeric>
 #include <string>
 #include <thread>
 
@@ -190,16 +189,14 @@ void to_output_numbering(const std::vector<int>& output, SurfaceReconstruction& 
 template <int D>
 Eigen::Matrix<int, Eigen::Dynamic, D + 1> kept_cells(const DelaunayComplex<D>& dt, const std::vector<char>& kept) {
   const std::size_t blocks = (kept.size() + kCellBlock - 1) / kCellBlock;
-  std::vector<Eigen::Index> offset(blocks + 1, 0);
-  for_each_block(blocks, [&](std::size_t b) {
+  const std::vector<std::size_t> offset = block_offsets(blocks, [&](std::size_t b) {
     const auto first = kept.begin() + static_cast<std::ptrdiff_t>(b * kCellBlock);
-    offset[b + 1] = std::count_if(first, first + static_cast<std::ptrdiff_t>(std::min(kCellBlock, kept.size() - b * kCellBlock)),
-                                  [](char k) { return k != 0; });
+    return static_cast<std::size_t>(std::count_if(
+        first, first + static_cast<std::ptrdiff_t>(std::min(kCellBlock, kept.size() - b * kCellBlock)), [](char k) { return k != 0; }));
   });
-  std::partial_sum(offset.begin(), offset.end(), offset.begin());
-  Eigen::Matrix<int, Eigen::Dynamic, D + 1> out(offset.back(), D + 1);
+  Eigen::Matrix<int, Eigen::Dynamic, D + 1> out(static_cast<Eigen::Index>(offset.back()), D + 1);
   for_each_block(blocks, [&](std::size_t b) {
-    Eigen::Index row = offset[b];
+    auto row = static_cast<Eigen::Index>(offset[b]);
     for (std::size_t k = b * kCellBlock; k < std::min(kept.size(), (b + 1) * kCellBlock); ++k)
       if (kept[k]) out.row(row++) = dt.cells.row(static_cast<Eigen::Index>(k));
   });

@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <cstddef>
+#include <numeric>
+#include <vector>
 
 namespace scanstation {
 
@@ -22,6 +24,18 @@ void for_each_block(std::size_t blocks, Body&& body) {
     return;
   }
   tbb::parallel_for(std::size_t{0}, blocks, body);
+}
+
+/// The first output row of each block, and the total at the end (blocks + 1
+/// entries), from count(b), the rows block b writes (counted on all cores):
+/// block b then writes its rows from offset[b], so the rows come in block
+/// order, as from one pass.
+template <typename Count>
+std::vector<std::size_t> block_offsets(std::size_t blocks, Count&& count) {
+  std::vector<std::size_t> offset(blocks + 1, 0);
+  for_each_block(blocks, [&](std::size_t b) { offset[b + 1] = count(b); });
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  return offset;
 }
 
 }  // namespace scanstation

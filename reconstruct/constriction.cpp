@@ -452,25 +452,23 @@ Constriction<D> pruned_boundary_of(const DelaunayComplex<D>& dt, std::vector<cha
     const auto first = static_cast<Eigen::Index>(b) * block;
     return std::pair(first, std::min(cells, first + block));
   };
-  std::vector<Eigen::Index> offset(blocks + 1, 0), removed(blocks, 0);
-  for_each_block(blocks, [&](std::size_t b) {
-    Eigen::Index faces = 0, gone = 0;
+  std::vector<std::size_t> removed(blocks, 0);
+  const std::vector<std::size_t> offset = block_offsets(blocks, [&](std::size_t b) {
+    std::size_t faces = 0;
     for (auto [c, end] = block_cells(b); c < end; ++c) {
       if (!kept[static_cast<std::size_t>(c)]) {
-        ++gone;
+        ++removed[b];
         continue;
       }
       for (int i = 0; i <= D; ++i) faces += boundary_face(c, i);
     }
-    offset[b + 1] = faces;
-    removed[b] = gone;
+    return faces;
   });
-  std::partial_sum(offset.begin(), offset.end(), offset.begin());
-  out.removed_cells = std::accumulate(removed.begin(), removed.end(), Eigen::Index{0});
-  out.boundary.resize(offset.back(), D);
+  out.removed_cells = std::accumulate(removed.begin(), removed.end(), std::size_t{0});
+  out.boundary.resize(static_cast<Eigen::Index>(offset.back()), D);
   std::vector<char> on_boundary(static_cast<std::size_t>(dt.points.rows()), 0);
   for_each_block(blocks, [&](std::size_t b) {
-    Eigen::Index row = offset[b];
+    auto row = static_cast<Eigen::Index>(offset[b]);
     for (auto [c, end] = block_cells(b); c < end; ++c) {
       if (!kept[static_cast<std::size_t>(c)]) continue;
       for (int i = 0; i <= D; ++i) {
