@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/mesh_measures.h"
 #include "core/unique_points.h"
+#include "core/unit_scale.h"
 #include "reconstruct/boundary_surface.h"
 #include "reconstruct/cell_blocks.h"
 
@@ -52,25 +53,6 @@ ReconstructionOptions renumbered(const ReconstructionOptions& options, std::vect
     line.point = static_cast<int>(map[static_cast<std::size_t>(line.point)]);
   }
   return out;
-}
-
-// The power of two that scales the points (exactly, so every predicate
-// answers as before) to magnitudes near 1, where circumcentres and lens
-// tests neither overflow nor underflow: coordinates of 1e±200 behave like
-// any others. 1 when scaling down would push a coordinate below the normal
-// range, where it would lose bits (and distinct points could merge).
-template <int D>
-double unit_scale(const Eigen::Matrix<double, Eigen::Dynamic, D>& P) {
-  const double largest = P.size() > 0 ? P.cwiseAbs().maxCoeff() : 0.0;
-  if (!(largest > 0.0)) return 1.0;
-  int exponent = 0;
-  std::frexp(largest, &exponent);
-  const double scale = std::ldexp(1.0, -exponent);
-  double smallest = std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < P.size(); ++i)
-    if (P.data()[i] != 0.0) smallest = std::min(smallest, std::abs(P.data()[i]));
-  if (scale < 1.0 && smallest * scale < std::numeric_limits<double>::min() * 0x1p53) return 1.0;
-  return scale;
 }
 
 // A template, not a const MatrixXd&: an N by 2 or 3 matrix would be copied
@@ -153,7 +135,7 @@ Triangulated<D> triangulate_distinct(const Eigen::Matrix<double, Eigen::Dynamic,
   s.input_points = points.rows();
   const auto start = std::chrono::steady_clock::now();
   Triangulated<D> out;
-  const double scale = unit_scale<D>(points);
+  const double scale = unit_scale(points);
   out.dt = distinct_delaunay(points, scale, first, map, out.output);
   s.duplicates_merged = points.rows() - static_cast<Eigen::Index>(first.size());
   // The power of two undoes exactly. Assigned as an expression: no

@@ -24,6 +24,7 @@
 
 #include "core/errors.h"
 #include "core/unique_points.h"
+#include "core/unit_scale.h"
 
 namespace scanstation {
 
@@ -227,9 +228,14 @@ Input<D> prepare(const Eigen::Matrix<double, Eigen::Dynamic, D>& V) {
   V3.leftCols(D) = V;
   std::vector<Eigen::Index> first, map;
   unique_points(V3, first, map);
+  // Pencils, lens balls and t_p are built in doubles: at 1e±300 their
+  // squared lengths would overflow or underflow (the 3D hull of 200 points
+  // came out with 638 triangles instead of 56). The exact scale keeps every
+  // predicate's answer and every t_p, a ratio of lengths.
+  const double scale = unit_scale(V);
   Input<D> in;
   for (Eigen::Index f : first) {
-    in.P.push_back(V.row(f).transpose());
+    in.P.push_back(V.row(f).transpose() * scale);
     in.id.push_back(static_cast<int>(f));
   }
   return in;

@@ -20,6 +20,7 @@
 
 #include "core/errors.h"
 #include "core/unique_points.h"
+#include "core/unit_scale.h"
 #include "reconstruct/gamma_graph.h"
 
 namespace scanstation {
@@ -202,7 +203,7 @@ Eigen::MatrixX2i furthest_point_alpha_shape_edges(const Eigen::MatrixX2d& V, dou
     double reference = 0.0, lo = -INFINITY, hi = INFINITY;
     for (const int k : hull) {
       if (k == i) continue;
-      const double distance = (V.row(k) - V.row(i)).norm();
+      const double distance = (V.row(k) - V.row(i)).stableNorm();
       if (distance > 2.0 * R) { lo = INFINITY; break; }  // no disc of radius R holds both
       if (arcs.empty()) reference = angle(i, k);
       const double centre = std::remainder(angle(i, k) - reference, 2.0 * std::numbers::pi);
@@ -232,7 +233,7 @@ Eigen::MatrixX2i alpha_shape_edges(const Eigen::MatrixX2d& V, double a) {
   gamma_pencil_bounds(V, E, LH);
   std::vector<Edge> out;
   for (Eigen::Index i = 0; i < E.rows(); ++i) {
-    const double r = 0.5 * (V.row(E(i, 0)) - V.row(E(i, 1))).norm();
+    const double r = 0.5 * (V.row(E(i, 0)) - V.row(E(i, 1))).stableNorm();  // no overflow at 1e300
     const double t = 1.0 - r * std::abs(a);  // the disc of radius 1/|a| has |t| = 1 - r|a|
     if (t < 0) continue;                     // 1/|a| < r: no such disc
     if ((LH(i, 0) <= t && t <= LH(i, 1)) || (LH(i, 0) <= -t && -t <= LH(i, 1))) out.push_back({E(i, 0), E(i, 1)});
@@ -240,10 +241,13 @@ Eigen::MatrixX2i alpha_shape_edges(const Eigen::MatrixX2d& V, double a) {
   return to_matrix(out);
 }
 
-Eigen::MatrixX2i beta_skeleton(const Eigen::MatrixX2d& V, double b, BetaNeighborhood kind) {
+Eigen::MatrixX2i beta_skeleton(const Eigen::MatrixX2d& input, double b, BetaNeighborhood kind) {
   if (!(b >= -1 && b <= 1)) throw InvalidInput("beta_skeleton: b = " + std::to_string(b) + " lies outside [-1, 1]");
-  if (kind == BetaNeighborhood::circle || b <= 0) return gamma_graph(V, b, b);  // N_βc(b) = N_γ(b,b)
-  if (b == 0.5) return relative_neighborhood_graph(V);
+  if (kind == BetaNeighborhood::circle || b <= 0) return gamma_graph(input, b, b);  // N_βc(b) = N_γ(b,b)
+  if (b == 0.5) return relative_neighborhood_graph(input);
+  // The lune test squares lengths: scaled exactly to magnitudes near 1 it
+  // neither overflows at 1e300 nor underflows at 1e-300 (the graph is the same).
+  const Eigen::MatrixX2d V = input * unit_scale(input);
   const Delaunay d = delaunay(V);
   const Eigen::MatrixX2i G = gabriel_graph(V);  // the lune holds the Gabriel disc
   PointsNear points_near(d);

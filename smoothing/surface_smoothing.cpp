@@ -45,15 +45,20 @@ LocalFrame local_frame(const Eigen::MatrixX3d& V) {
   LocalFrame frame;
   if (V.rows() == 0) return frame;
   const Eigen::RowVector3d low = V.colwise().minCoeff(), high = V.colwise().maxCoeff();
-  double extent = 0;
+  double half_extent = 0;  // half the widest range: finite even where the range itself overflows
   for (int i = 0; i < 3; ++i) {
     const double width = high(i) - low(i), middle = low(i) / 2 + high(i) / 2;
     if (std::isfinite(width) && std::abs(middle) >= 2 * width) frame.centre(i) = middle;
-    extent = std::max(extent, width);
+    half_extent = std::max(half_extent, high(i) / 2 - low(i) / 2);
   }
   int exponent = 0;
-  if (std::isfinite(extent) && extent > 0) std::frexp(extent, &exponent);
-  if (std::abs(exponent) > 100 && std::abs(exponent) < 1000) frame.exponent = exponent;  // 2^±exponent stays a normal double
+  if (std::isfinite(half_extent) && half_extent > 0) {
+    std::frexp(half_extent, &exponent);
+    ++exponent;
+  }
+  // 2^±exponent stays a normal double; a subnormal or near-overflow extent
+  // gets the nearest such scale (local extents of 2^±24 or less).
+  if (std::abs(exponent) > 100) frame.exponent = std::clamp(exponent, -1000, 1000);
   return frame;
 }
 

@@ -10,6 +10,8 @@
 #include "reconstruct/gamma_graph.h"
 #include "reconstruct/geometric_graphs.h"
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -36,12 +38,22 @@ Eigen::MatrixX2i named_graph(const std::string& type, const Eigen::MatrixX2d& V,
     if (!param) throw InvalidInput("--type " + type + " needs --param (" + what + ")");
     return *param;
   };
+  // The thesis normalizes β to b in [-1, 1] (Definitions 2.15, 2.16), not
+  // Kirkpatrick and Radke's β ≥ 1 (their β is 1 / (1 − b) for b ≥ 0).
+  const auto need_b = [&] {
+    const double b = need("β");
+    if (!(b >= -1 && b <= 1))
+      throw InvalidInput("--param: expected b in [-1, 1] for --type " + type +
+                         " (the thesis' normalized β, Definitions 2.15–2.16: 0 Gabriel, 0.5 relative neighbourhood "
+                         "for the lune; Kirkpatrick and Radke's β ≥ 1 is b = 1 − 1/β), got " + fmt::format("{}", b));
+    return b;
+  };
   NamedGraphs graphs = edge_graphs(V);
   graphs.insert({{"hull", [&] { return convex_hull_edges(V); }},
                  {"delaunay", [&] { return delaunay_edges(V); }},
                  {"alpha", [&] { return alpha_shape_edges(V, need("α")); }},
-                 {"beta-lune", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::lune); }},
-                 {"beta-circle", [&] { return beta_skeleton(V, need("β"), BetaNeighborhood::circle); }}});
+                 {"beta-lune", [&] { return beta_skeleton(V, need_b(), BetaNeighborhood::lune); }},
+                 {"beta-circle", [&] { return beta_skeleton(V, need_b(), BetaNeighborhood::circle); }}});
   const auto it = graphs.find(type);
   if (it == graphs.end())
     throw InvalidInput("--type: expected cp, nng, emst, rng, gabriel, hull, delaunay, alpha, beta-lune or beta-circle; "
@@ -86,7 +98,7 @@ class GraphCommand final : public Command {
                       ->delimiter(',');
     auto* type = cli_->add_option("--type", type_,
                                   "cp, nng, emst, rng, gabriel, hull, delaunay; 2D also alpha, beta-lune, beta-circle");
-    cli_->add_option("--param", param_, "α for alpha, β for beta-lune / beta-circle");
+    cli_->add_option("--param", param_, "α for alpha; b in [-1, 1] for beta-lune / beta-circle (the thesis' β, Def. 2.15–2.16)");
     cli_->add_option("--format", format_, "Input format, when the extension does not tell");
     gamma->excludes(range)->excludes(type);
     range->excludes(type);

@@ -320,6 +320,11 @@ TEST(Cli, GraphsIn2DAnd3D) {
   EXPECT_EQ(scanstation("graph " + square + " -o " + path(dir / "x.svg")).exit_code, 1);
   EXPECT_EQ(scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --type alpha").exit_code, 1);
   EXPECT_EQ(scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --gamma 1").exit_code, 1);
+  // β ≥ 1 as Kirkpatrick and Radke write it: the error names the option and the thesis' range.
+  r = scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --type beta-lune --param 1.5");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--param: expected b in [-1, 1]"));
+  EXPECT_THAT(r.err, testing::HasSubstr("got 1.5"));
   r = scanstation("graph " + path(test::cgal_data("meshes/cactus.off")) + " -o " + path(dir / "c.ply") +
                   " --type hull --report " + path(dir / "c.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -159,6 +159,39 @@ TEST(Constriction3, ResultIsInvariantUnderScaleAndTranslation) {
   }
 }
 
+// The extremes of the double range: the points scaled by powers of two into
+// the subnormal range and up to the edge of overflow. Rounded first to a
+// grid of 2^-20 so that every scaled coordinate is exact (the smallest
+// subnormal step is 2^-1074), the points are the same up to the scale, and
+// so must be the answer. The unit scale once overflowed to infinity on
+// subnormal input (2^1027), and CGAL merged the points.
+template <int D>
+Eigen::Matrix<double, Eigen::Dynamic, D> on_grid(Eigen::Matrix<double, Eigen::Dynamic, D> P) {
+  const double largest = P.cwiseAbs().maxCoeff();
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  P *= std::ldexp(1.0, -exponent);  // within (-1, 1)
+  return (P * 0x1p20).array().round().matrix() * 0x1p-20;
+}
+
+TEST(Constriction3, SubnormalAndNearOverflowCoordinatesGiveTheSameBoundary) {
+  TriangleMesh shape = sim::surface_of_revolution(sim::chalice_profile(30), 20);
+  sim::Random random(5);
+  for (Eigen::Index i = 0; i < shape.vertex_count(); ++i)
+    for (int c = 0; c < 3; ++c) shape.vertices.positions(i, c) += 1e-3 * random.normal();
+  const Eigen::MatrixX3d P = on_grid<3>(shape.vertices.positions);
+  const SurfaceReconstruction base = reconstruct_surface(P);
+  expect_valid_surface(base, "chalice on a grid");
+  for (const double scale : {0x1p-1054, 0x1p-1030, 0x1p1023}) {
+    const Eigen::MatrixX3d scaled = P * scale;
+    ASSERT_EQ(Eigen::MatrixX3d(scaled / scale), P) << scale;  // exact
+    const SurfaceReconstruction r = reconstruct_surface(scaled);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << scale;
+    EXPECT_EQ(triangle_recall(base.mesh.faces, r.mesh.faces), 1.0) << scale;
+    EXPECT_EQ(r.mesh.vertices.positions, scaled) << scale;
+  }
+}
+
 // Random clouds (uniform in a ball: many points deep inside) lock plain
 // constriction; with augmentation every point must reach a valid boundary.
 TEST(Constriction3, RandomCloudsAlwaysGiveValidBoundaries) {
@@ -659,6 +692,20 @@ TEST(Constriction2, ChaliceAndFaceOutlinesGiveSimplePolygonsThroughAllPoints) {
   const Polygon2 chalice = sim::chalice_outline(160);
   const CurveReconstruction r = reconstruct_curve(chalice.vertices);
   EXPECT_NEAR(twice_signed_area(r.polygon), twice_signed_area(chalice), 1e-9);
+}
+
+TEST(Constriction2, SubnormalAndNearOverflowCoordinatesGiveTheSamePolygon) {
+  const Eigen::MatrixX2d P = on_grid<2>(sim::sample_outline(sim::face_profile_outline(400), 300, 3));
+  const CurveReconstruction base = reconstruct_curve(P);
+  ASSERT_TRUE(base.statistics.all_on_boundary);
+  for (const double scale : {0x1p-1054, 0x1p-1030, 0x1p1023}) {
+    const Eigen::MatrixX2d scaled = P * scale;
+    ASSERT_EQ(Eigen::MatrixX2d(scaled / scale), P) << scale;
+    const CurveReconstruction r = reconstruct_curve(scaled);
+    EXPECT_TRUE(r.statistics.all_on_boundary) << scale;
+    EXPECT_EQ(r.order, base.order) << scale;
+    EXPECT_EQ(r.polygon.vertices, Eigen::MatrixX2d(base.polygon.vertices * scale)) << scale;
+  }
 }
 
 // Without repeated rows the triangulation leaves map empty (it would be

@@ -220,6 +220,17 @@ TEST(GeometricGraphs, InvariantUnderScalingAndTranslation) {
     EXPECT_EQ(edges(gabriel_graph(W)), edges(gabriel_graph(V)));
     EXPECT_EQ(edges(delaunay_edges(W)), edges(delaunay_edges(V)));
   }
+  // Exact copies at the ends of the double range, where squared lengths
+  // overflow or underflow: the lune skeleton (it was the Gabriel graph
+  // there) and the α-shapes, with α scaled along.
+  for (const double scale : {0x1p-1000, 0x1p1000}) {
+    const Eigen::MatrixX2d W = V * scale;
+    for (const double b : {0.3, 0.8, 1.0})
+      EXPECT_EQ(edges(beta_skeleton(W, b, BetaNeighborhood::lune)), edges(beta_skeleton(V, b, BetaNeighborhood::lune)))
+          << scale << " " << b;
+    for (const double a : {-0.5, 0.5, 2.0})
+      EXPECT_EQ(edges(alpha_shape_edges(W, a / scale)), edges(alpha_shape_edges(V, a))) << scale << " " << a;
+  }
 }
 
 }  // namespace

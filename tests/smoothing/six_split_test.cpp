@@ -187,5 +187,38 @@ TEST(SurfaceSmoothing, FarFromTheOriginIsTheSurfaceAtTheOriginMoved) {
   }
 }
 
+// At the ends of the double range the command smooths the mesh as if it
+// were of ordinary size: a mesh scaled by powers of two into the subnormal
+// range, and to where its width overflows (the extent once came out
+// infinite there, and the mesh was smoothed unscaled: every normal failed).
+// The vertices lie on a grid of 2^-20 so that each scaled copy is exact;
+// the control points, moved back, are rounded at the scale.
+TEST(SurfaceSmoothing, SubnormalAndNearOverflowMeshesAreTheOrdinaryOneScaled) {
+  TriangleMesh mesh = test::bumpy_sphere(2, 0.1);
+  mesh.vertices.positions = (mesh.vertices.positions * 0x1p20).array().round().matrix() * 0x1p-20;
+  const SurfaceSmoothing ordinary = smooth_surface(mesh);
+  for (const double scale : {0x1p-1050, 0x1p1022}) {
+    TriangleMesh scaled = mesh;
+    scaled.vertices.positions *= scale;
+    ASSERT_EQ(Eigen::MatrixX3d(scaled.vertices.positions / scale), mesh.vertices.positions);
+    const SurfaceSmoothing s = smooth_surface(scaled);
+    EXPECT_EQ(s.surface.dependent_edges, ordinary.surface.dependent_edges) << scale;
+    EXPECT_EQ(s.adjusted_vertices, ordinary.adjusted_vertices) << scale;
+    ASSERT_EQ(s.surface.patches.size(), ordinary.surface.patches.size());
+    double largest = 0;
+    std::size_t vertex_corners = 0;
+    for (std::size_t p = 0; p < s.surface.patches.size(); ++p) {
+      for (int k = 0; k < 10; ++k)
+        largest = std::max(largest, (s.surface.patches[p][k] / scale - ordinary.surface.patches[p][k]).norm());
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+          vertex_corners += patch_corner(s.surface.patches[p], k) ==
+                            Eigen::Vector3d(scaled.vertices.positions.row(scaled.faces(s.surface.macro[p], c)));
+    }
+    EXPECT_LT(largest, 1e-6) << scale;  // subnormal steps of 2^-1074 are 2^-24 at this scale
+    EXPECT_EQ(vertex_corners, 6u * static_cast<std::size_t>(mesh.face_count())) << scale;
+  }
+}
+
 }  // namespace
 }  // namespace scanstation
