@@ -153,6 +153,35 @@ TEST(SixSplit, CubeCornersGetNormalsThatKeepTheCrossEdgePointsApart) {
 }
 
 
+// How far s, its control points taken back by `back`, lies from the
+// reference smoothing, and how many patch corners are s's mesh's vertices
+// bit for bit (6 per face when every vertex is interpolated).
+struct MovedSurface {
+  double largest = 0;
+  std::size_t vertex_corners = 0;
+};
+
+template <typename Back>
+MovedSurface compare_moved(const SurfaceSmoothing& s, const TriangleMesh& mesh, const SurfaceSmoothing& reference,
+                           Back back) {
+  EXPECT_EQ(s.surface.dependent_edges, reference.surface.dependent_edges);
+  EXPECT_EQ(s.adjusted_vertices, reference.adjusted_vertices);
+  MovedSurface out;
+  if (s.surface.patches.size() != reference.surface.patches.size()) {
+    ADD_FAILURE() << "patch counts differ";
+    return out;
+  }
+  for (std::size_t p = 0; p < s.surface.patches.size(); ++p) {
+    for (int k = 0; k < 10; ++k)
+      out.largest = std::max(out.largest, (back(s.surface.patches[p][k]) - reference.surface.patches[p][k]).norm());
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c)
+        out.vertex_corners += patch_corner(s.surface.patches[p], k) ==
+                              Eigen::Vector3d(mesh.vertices.positions.row(mesh.faces(s.surface.macro[p], c)));
+  }
+  return out;
+}
+
 // A scan in georeferenced coordinates lies far from the origin: the command
 // smooths it as if it lay at the origin (the same decisions, the same
 // control points moved, up to the rounding of the far coordinates) and still
@@ -167,23 +196,10 @@ TEST(SurfaceSmoothing, FarFromTheOriginIsTheSurfaceAtTheOriginMoved) {
     // The same rounded points at the origin (the subtraction is exact).
     TriangleMesh at_origin = far;
     at_origin.vertices.positions = far.vertices.positions.rowwise() - shift;
-    const SurfaceSmoothing near = smooth_surface(at_origin);
-    const SurfaceSmoothing s = smooth_surface(far);
-    EXPECT_EQ(s.surface.dependent_edges, near.surface.dependent_edges) << offset;
-    EXPECT_EQ(s.adjusted_vertices, near.adjusted_vertices) << offset;
-    ASSERT_EQ(s.surface.patches.size(), near.surface.patches.size());
-    double largest = 0;
-    std::size_t vertex_corners = 0;
-    for (std::size_t p = 0; p < s.surface.patches.size(); ++p) {
-      for (int k = 0; k < 10; ++k)
-        largest = std::max(largest, (s.surface.patches[p][k] - shift.transpose() - near.surface.patches[p][k]).norm());
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 3; ++c)
-          vertex_corners += patch_corner(s.surface.patches[p], k) ==
-                            Eigen::Vector3d(far.vertices.positions.row(far.faces(s.surface.macro[p], c)));
-    }
-    EXPECT_LT(largest, 16 * offset * std::numeric_limits<double>::epsilon()) << offset;
-    EXPECT_EQ(vertex_corners, 6u * static_cast<std::size_t>(mesh.face_count())) << offset;
+    const MovedSurface m = compare_moved(smooth_surface(far), far, smooth_surface(at_origin),
+                                         [&](const Eigen::Vector3d& b) { return Eigen::Vector3d(b - shift.transpose()); });
+    EXPECT_LT(m.largest, 16 * offset * std::numeric_limits<double>::epsilon()) << offset;
+    EXPECT_EQ(m.vertex_corners, 6u * static_cast<std::size_t>(mesh.face_count())) << offset;
   }
 }
 
@@ -201,22 +217,10 @@ TEST(SurfaceSmoothing, SubnormalAndNearOverflowMeshesAreTheOrdinaryOneScaled) {
     TriangleMesh scaled = mesh;
     scaled.vertices.positions *= scale;
     ASSERT_EQ(Eigen::MatrixX3d(scaled.vertices.positions / scale), mesh.vertices.positions);
-    const SurfaceSmoothing s = smooth_surface(scaled);
-    EXPECT_EQ(s.surface.dependent_edges, ordinary.surface.dependent_edges) << scale;
-    EXPECT_EQ(s.adjusted_vertices, ordinary.adjusted_vertices) << scale;
-    ASSERT_EQ(s.surface.patches.size(), ordinary.surface.patches.size());
-    double largest = 0;
-    std::size_t vertex_corners = 0;
-    for (std::size_t p = 0; p < s.surface.patches.size(); ++p) {
-      for (int k = 0; k < 10; ++k)
-        largest = std::max(largest, (s.surface.patches[p][k] / scale - ordinary.surface.patches[p][k]).norm());
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 3; ++c)
-          vertex_corners += patch_corner(s.surface.patches[p], k) ==
-                            Eigen::Vector3d(scaled.vertices.positions.row(scaled.faces(s.surface.macro[p], c)));
-    }
-    EXPECT_LT(largest, 1e-6) << scale;  // subnormal steps of 2^-1074 are 2^-24 at this scale
-    EXPECT_EQ(vertex_corners, 6u * static_cast<std::size_t>(mesh.face_count())) << scale;
+    const MovedSurface m = compare_moved(smooth_surface(scaled), scaled, ordinary,
+                                         [&](const Eigen::Vector3d& b) { return Eigen::Vector3d(b / scale); });
+    EXPECT_LT(m.largest, 1e-6) << scale;  // subnormal steps of 2^-1074 are 2^-24 at this scale
+    EXPECT_EQ(m.vertex_corners, 6u * static_cast<std::size_t>(mesh.face_count())) << scale;
   }
 }
 
