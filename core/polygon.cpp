@@ -30,6 +30,14 @@ double perimeter(const Polygon2& polygon) {
   return sum;
 }
 
+Eigen::Index drop_closing_repeat(Polygon2& polygon) {
+  Eigen::Index n = polygon.size();
+  while (n > 3 && polygon.vertices.row(n - 1) == polygon.vertices.row(0)) --n;
+  const Eigen::Index dropped = polygon.size() - n;
+  if (dropped > 0) polygon.vertices.conservativeResize(n, 2);
+  return dropped;
+}
+
 bool is_simple(const Polygon2& polygon) {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   if (polygon.size() < 3) return false;

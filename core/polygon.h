@@ -13,6 +13,12 @@ struct Polygon2 {
   Eigen::Index size() const { return vertices.rows(); }
 };
 
+/// Many polygon files list a ring's first vertex again at its end (SVG paths
+/// closed by hand, GIS rings). The polygon is closed implicitly here, so such
+/// trailing copies (equal to the first vertex bit for bit) are dropped, while
+/// at least 3 vertices remain. Returns how many were dropped.
+Eigen::Index drop_closing_repeat(Polygon2& polygon);
+
 /// Twice the signed area (shoelace); positive for counter-clockwise order.
 double twice_signed_area(const Polygon2& polygon);
 

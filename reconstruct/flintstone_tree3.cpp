@@ -1,6 +1,7 @@
 #include "reconstruct/flintstone_tree3.h"
 
 #include "core/errors.h"
+#include "core/mesh_topology.h"
 #include "reconstruct/smallest_enclosing_ball.h"
 
 #include <Eigen/Geometry>
@@ -662,6 +663,22 @@ std::size_t FlintstoneTree3::storage_bytes() const {
 
 FlintstoneTree3 flintstone_tree(const TriangleMesh& mesh, const FlintstoneOptions3& options) {
   if (mesh.face_count() == 0) throw InvalidInput("flintstone tree: the mesh has no faces");
+  // The root's three cut paths (§7.3.2) split one closed surface in two:
+  // with several parts, or parts sharing only a vertex, they cannot, and the
+  // refinement would run past the faces it was given. Open or non-manifold
+  // edges are left to face_neighbors, which names one.
+  const MeshTopology topology = mesh_topology(mesh);
+  if (topology.boundary_edges == 0 && topology.non_manifold_edges == 0) {
+    if (topology.components > 1)
+      throw TopologyError("flintstone tree: the mesh has " + std::to_string(topology.components) +
+                          " separate parts; a flintstone tree (§7.3) covers one closed surface: split the mesh and "
+                          "build one tree per part");
+    if (topology.non_manifold_vertices > 0)
+      throw TopologyError("flintstone tree: " + std::to_string(topology.non_manifold_vertices) +
+                          (topology.non_manifold_vertices == 1 ? " vertex joins" : " vertices join") +
+                          " several fans of faces (the surface pinches there); a flintstone tree (§7.3) needs a "
+                          "closed 2-manifold");
+  }
   FlintstoneTree3 tree;
   tree.vertices = mesh.vertices.positions;
   tree.faces = mesh.faces;

@@ -23,6 +23,35 @@ std::string edge_name(const Eigen::MatrixX3i& F, const HalfEdge& h) {
          ") of face " + std::to_string(h.face);
 }
 
+// Every edge can have two faces while a vertex joins two surfaces (two
+// tetrahedra sharing a corner): its faces then form several fans, and the
+// patches around it no disc. Walks one fan per vertex across the edges
+// leaving it and compares its length with the vertex's face count.
+void require_one_fan_per_vertex(const Eigen::MatrixX3i& F, const MeshEdges& edges) {
+  const Eigen::Index vertex_count = F.size() > 0 ? F.maxCoeff() + 1 : 0;
+  std::vector<int> faces_at(static_cast<std::size_t>(vertex_count), 0), fan_of(static_cast<std::size_t>(vertex_count), -1);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      ++faces_at[static_cast<std::size_t>(F(f, k))];
+      if (fan_of[static_cast<std::size_t>(F(f, k))] < 0) fan_of[static_cast<std::size_t>(F(f, k))] = 3 * f + k;
+    }
+  for (Eigen::Index v = 0; v < vertex_count; ++v) {
+    const int start = fan_of[static_cast<std::size_t>(v)];
+    if (start < 0) continue;
+    int f = start / 3, k = start % 3, length = 0;
+    do {  // edge k of face f leaves v; v is corner (e + 1) % 3 of the face across it
+      const int e = edges.neighbour_edge(f, k);
+      f = edges.neighbour(f, k);
+      k = (e + 1) % 3;
+      ++length;
+    } while (3 * f + k != start && length <= faces_at[static_cast<std::size_t>(v)]);
+    if (length != faces_at[static_cast<std::size_t>(v)])
+      throw TopologyError("vertex " + std::to_string(v) + ": its " + std::to_string(faces_at[static_cast<std::size_t>(v)]) +
+                          " faces form more than one fan (the surface pinches there): smoothing needs a closed "
+                          "manifold surface");
+  }
+}
+
 }  // namespace
 
 MeshEdges mesh_edges(const Eigen::MatrixX3i& F) {
@@ -53,6 +82,7 @@ MeshEdges mesh_edges(const Eigen::MatrixX3i& F) {
     edges.neighbour(g.face, g.edge) = h.face;
     edges.neighbour_edge(g.face, g.edge) = h.edge;
   }
+  require_one_fan_per_vertex(F, edges);
   return edges;
 }
 

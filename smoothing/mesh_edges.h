@@ -16,7 +16,8 @@ struct MeshEdges {
 
 /// Throws TopologyError naming an edge that is not shared by exactly two
 /// faces in opposite directions (the surface must be closed, manifold and
-/// oriented, as constriction produces it).
+/// oriented, as constriction produces it), or a vertex whose faces form more
+/// than one fan (a pinch: two surfaces sharing the vertex).
 MeshEdges mesh_edges(const Eigen::MatrixX3i& F);
 
 }  // namespace scanstation

@@ -103,6 +103,12 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   const Eigen::MatrixX3d& V = frame.identity() ? mesh.vertices.positions : local;
   SurfaceSmoothing result;
   auto start = std::chrono::steady_clock::now();
+  MeshEdges edges;  // first: a surface that is not one closed manifold has no meaningful normals either
+  try {
+    edges = mesh_edges(mesh.faces);
+  } catch (const TopologyError& e) {
+    throw InvalidInput(e.what());
+  }
   Eigen::MatrixX3d N;
   if (options.given_normals) {
     if (options.given_normals->rows() != V.rows())
@@ -114,12 +120,6 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
     N = fitted_vertex_normals(V, mesh.faces, static_cast<int>(neighbours));
   } else {
     N = vertex_normals(V, mesh.faces, options.normals);
-  }
-  MeshEdges edges;
-  try {
-    edges = mesh_edges(mesh.faces);
-  } catch (const TopologyError& e) {
-    throw InvalidInput(e.what());
   }
   std::vector<char> in_a_face(static_cast<std::size_t>(V.rows()), 0);
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f)

@@ -16,6 +16,7 @@ BoundaryInput read_boundary(const std::filesystem::path& path, const std::option
   TriangleMesh mesh = io::read_mesh(path, {format, progress});
   if (mesh.vertices.dimension == 2 && mesh.face_count() == 0) {
     input.polygon = Polygon2{mesh.vertices.positions.leftCols(2)};
+    drop_closing_repeat(*input.polygon);
   } else if (mesh.face_count() > 0) {
     input.mesh = std::move(mesh);
   } else {

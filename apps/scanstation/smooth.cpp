@@ -22,8 +22,8 @@ class SmoothCommand final : public Command {
  public:
   explicit SmoothCommand(CLI::App& parent)
       : Command(parent, "smooth", "G¹ cubic Bézier curve or surface through a polygon or closed mesh (Ch. 9)") {
-    cli_->add_option("input", input_, "A closed triangle mesh (ply, off, obj, stl), or with --scheme curve a polygon "
-                                      "(svg, or x y per line)")
+    cli_->add_option("input", input_, "A closed triangle mesh (ply, off, obj, stl), or a polygon (svg, or x y per line "
+                                      "in boundary order), which gets the curve scheme")
         ->required();
     cli_->add_option("-o,--output", output_,
                      "Surface: the tessellated mesh with normals (ply, obj, off, stl). Curve: an svg picture (polygon, "
@@ -32,7 +32,7 @@ class SmoothCommand final : public Command {
     cli_->add_option("--scheme", scheme_,
                      "six-split (§9.8, least oscillation), three-split (§9.6) or adaptive-two-split (§9.7: thin "
                      "triangles and their neighbour across the longest edge split in two, the rest in three) for "
-                     "meshes, curve (§9.2) for polygons")
+                     "meshes, curve (§9.2) for polygons; default: six-split for a mesh, curve for a polygon")
         ->check(CLI::IsMember({"six-split", "three-split", "adaptive-two-split", "curve"}))
         ->capture_default_str();
     cli_->add_option("--normals", normals_,
@@ -79,25 +79,50 @@ class SmoothCommand final : public Command {
     io::check_writable(output_, context.overwrite);
     if (patches_) io::check_writable(*patches_, context.overwrite);
     if (zebra_) io::check_writable(*zebra_, context.overwrite);
-    if (scheme_ == "curve")
-      smooth_curve(context);
-    else
-      smooth_surface(context);
+    // Without --scheme the input decides, as in reconstruct: a polygon (svg,
+    // or 2D points in boundary order) gets the curve of §9.2.
+    const bool scheme_given = cli_->count("--scheme") > 0;
+    if (scheme_ == "curve" || (!scheme_given && io::resolve_format(input_, std::nullopt) == io::FileFormat::svg)) {
+      StageTimer read_timer(context.report, "read");
+      const Polygon2 polygon = io::read_polygon(input_);
+      read_timer.stop();
+      smooth_curve(context, polygon);
+      return;
+    }
+    StageTimer read_timer(context.report, "read");
+    TriangleMesh mesh = io::read_mesh(input_, {std::nullopt, context.progress.stage("read")});
+    context.progress.finish();
+    read_timer.stop();
+    if (!scheme_given && mesh.vertices.dimension == 2 && mesh.face_count() == 0) {
+      Polygon2 polygon{mesh.vertices.positions.leftCols(2)};
+      drop_closing_repeat(polygon);
+      smooth_curve(context, polygon);
+      return;
+    }
+    if (mesh.face_count() == 0)
+      throw InvalidInput(input_.string() + ": points without triangles; smoothing needs a closed triangle mesh "
+                         "(`scanstation reconstruct` builds one through the points)");
+    smooth_surface(context, mesh);
   }
 
  private:
-  void smooth_curve(CommandContext& context) {
+  void smooth_curve(CommandContext& context, const Polygon2& polygon) {
     if (zebra_) throw InvalidInput("--zebra renders surfaces; --scheme curve makes a 2D curve");
-    StageTimer read_timer(context.report, "read");
-    const Polygon2 polygon = io::read_polygon(input_);
-    read_timer.stop();
+    if (polygon.size() < 3)
+      throw InvalidInput(input_.string() + ": expected a polygon of at least 3 vertices, found " +
+                         std::to_string(polygon.size()));
     const std::map<std::string, TangentWeighting> weightings{{"area", TangentWeighting::length},
                                                              {"uniform", TangentWeighting::uniform},
                                                              {"inverse-area", TangentWeighting::inverse_length}};
     if (normals_ == "given" || normals_ == "fitted")
       throw InvalidInput("--normals " + normals_ + ": for surfaces; polygons take area, uniform or inverse-area");
     StageTimer curve_timer(context.report, "curve");
-    const G1Curve curve = g1_curve(polygon, polygon_tangents(polygon, weightings.at(normals_)));
+    G1Curve curve;
+    try {
+      curve = g1_curve(polygon, polygon_tangents(polygon, weightings.at(normals_)));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(input_.string() + ": " + e.what());
+    }
     curve_timer.stop();
     StageTimer write_timer(context.report, "write");
     const bool json_output = output_.extension() == ".json";
@@ -119,11 +144,7 @@ class SmoothCommand final : public Command {
                 max_tangent_angle(curve));
   }
 
-  void smooth_surface(CommandContext& context) {
-    StageTimer read_timer(context.report, "read");
-    const TriangleMesh mesh = io::read_mesh(input_, {std::nullopt, context.progress.stage("read")});
-    context.progress.finish();
-    read_timer.stop();
+  void smooth_surface(CommandContext& context, const TriangleMesh& mesh) {
     const SurfaceSmoothingOptions options = smoothing_options(mesh);
     SurfaceSmoothing smoothed;
     try {

@@ -71,7 +71,11 @@ void write_points(const fs::path& path, const PointCloud& points, const WriteOpt
 Polygon2 read_polygon(const fs::path& path, const ReadOptions& options) {
   const FileFormat format = resolve_format(path, options.format);
   const std::string bytes = read_file(path);
-  if (format == FileFormat::svg) return read_svg(bytes, path);
+  if (format == FileFormat::svg) {
+    Polygon2 polygon = read_svg(bytes, path);
+    drop_closing_repeat(polygon);
+    return polygon;
+  }
   if (format != FileFormat::xyz)
     throw InvalidInput(path.string() + ": a polygon is read from svg or from a text list of 'x y' lines, not " +
                        format_name(format));
@@ -83,6 +87,7 @@ Polygon2 read_polygon(const fs::path& path, const ReadOptions& options) {
                       "expected a polygon of at least 3 vertices, found " + std::to_string(cloud.size()));
   Polygon2 polygon;
   polygon.vertices = cloud.positions.leftCols(2);
+  drop_closing_repeat(polygon);
   return polygon;
 }
 

@@ -473,6 +473,15 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_LT(nlohmann::json::parse(slurp(dir / "c.json"))["result"]["max_tangent_angle"].get<double>(), 1e-12);
   EXPECT_THAT(slurp(dir / "c.svg"), testing::HasSubstr("<svg"));
+  // Without --scheme a polygon gets the curve, and a ring listing its first
+  // vertex again at the end is the same polygon: the same control points.
+  std::ofstream(dir / "ring.xy") << "0 0\n2 0\n2 1\n0 1\n0 0\n";
+  r = scanstation("smooth " + path(dir / "ring.xy") + " -o " + path(dir / "ring.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = scanstation("smooth " + path(dir / "square.xy") + " -o " + path(dir / "square.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(dir / "ring.json"), slurp(dir / "square.json"));
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "ring.json"))["segments"].size(), 4u);
 }
 
 TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {

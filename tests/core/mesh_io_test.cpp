@@ -112,6 +112,19 @@ TEST(MeshIo, PolygonsAsTextAndSvg) {
   EXPECT_EQ(read_polygon(dir / "p.svg").vertices, p.vertices);
   write_points(dir / "three.xyz", sim::icosahedron().vertices);
   expect_error<FormatError>([&] { read_polygon(dir / "three.xyz"); }, {"three.xyz", "two numbers"});
+  // A ring that lists its first vertex again at the end (and again) reads as
+  // the same polygon; a triangle's repeat stays (three vertices at least).
+  Polygon2 ring = p;
+  ring.vertices.conservativeResize(7, 2);
+  ring.vertices.row(5) = p.vertices.row(0);
+  ring.vertices.row(6) = p.vertices.row(0);
+  write_polygon(dir / "ring.xy", ring);
+  write_polygon(dir / "ring.svg", ring);
+  EXPECT_EQ(read_polygon(dir / "ring.xy").vertices, p.vertices);
+  EXPECT_EQ(read_polygon(dir / "ring.svg").vertices, p.vertices);
+  Polygon2 two_and_back{(Eigen::MatrixX2d(3, 2) << 0, 0, 1, 0, 0, 0).finished()};
+  EXPECT_EQ(drop_closing_repeat(two_and_back), 0);
+  EXPECT_EQ(two_and_back.size(), 3);
 }
 
 TEST(MeshIo, RealCgalMeshesAgreeAcrossFormats) {

@@ -265,5 +265,31 @@ TEST(FlintstoneTree3, RejectsOpenMeshes) {
   test::expect_error<InvalidInput>([] { flintstone_tree(TriangleMesh{}); }, {"no faces"});
 }
 
+// Two closed surfaces, apart or sharing one vertex, are closed and oriented
+// edge by edge, but the root's cut paths cannot split them in two: the
+// refinement ran past its faces (a crash) before they were refused.
+TEST(FlintstoneTree3, RejectsSeveralPartsAndPinchedVertices) {
+  const TriangleMesh ball = sim::icosphere(1);
+  const auto two = [&](const Eigen::RowVector3d& offset, bool share_vertex) {
+    TriangleMesh mesh = ball;
+    const Eigen::Index n = ball.vertex_count();
+    mesh.vertices.positions.conservativeResize(2 * n, 3);
+    mesh.vertices.positions.bottomRows(n) = ball.vertices.positions.rowwise() + offset;
+    mesh.faces.conservativeResize(2 * ball.face_count(), 3);
+    mesh.faces.bottomRows(ball.face_count()) = ball.faces.array() + static_cast<int>(n);
+    if (share_vertex) {  // the second ball's vertex 0 becomes the first's vertex 0
+      const Eigen::RowVector3d shift = ball.vertices.positions.row(0) - mesh.vertices.positions.row(n);
+      mesh.vertices.positions.bottomRows(n).rowwise() += shift;
+      for (Eigen::Index f = ball.face_count(); f < mesh.face_count(); ++f)
+        for (int k = 0; k < 3; ++k)
+          if (mesh.faces(f, k) == n) mesh.faces(f, k) = 0;
+    }
+    return mesh;
+  };
+  test::expect_error<TopologyError>([&] { flintstone_tree(two({3, 0, 0}, false)); }, {"2 separate parts"});
+  const TriangleMesh pinched = two(-2 * ball.vertices.positions.row(0), true);
+  test::expect_error<TopologyError>([&] { flintstone_tree(pinched); }, {"1 vertex joins several fans"});
+}
+
 }  // namespace
 }  // namespace scanstation

@@ -1,8 +1,10 @@
 #include "smoothing/six_split.h"
 
+#include "core/errors.h"
 #include "core/mesh_topology.h"
 #include "smoothing/cross_edge_directions.h"
 #include "smoothing/g1_verification.h"
+#include "smoothing/mesh_edges.h"
 #include "smoothing/oscillation.h"
 #include "smoothing/patch_adjacency.h"
 #include "smoothing/sign_condition.h"
@@ -12,6 +14,7 @@
 #include "smoothing/vertex_normals.h"
 #include "smoothing_test_meshes.h"
 #include "surface_checks.h"
+#include "test_support.h"
 
 namespace scanstation {
 namespace {
@@ -152,6 +155,26 @@ TEST(SixSplit, CubeCornersGetNormalsThatKeepTheCrossEdgePointsApart) {
   EXPECT_EQ(smooth_surface(cube).adjusted_vertices, adjusted);  // the command does the same
 }
 
+
+// Two spheres sharing a vertex: every edge has two faces in opposite
+// directions, but the faces at that vertex form two fans and its patches
+// no disc. The error names the vertex (it was "no surface normal", the
+// two fans' normals cancelling).
+TEST(SurfaceSmoothing, RejectsAPinchedVertexByName) {
+  const TriangleMesh ball = test::bumpy_sphere(1, 0.0);
+  const Eigen::Index n = ball.vertex_count();
+  TriangleMesh pinched = ball;
+  pinched.vertices.positions.conservativeResize(2 * n, 3);
+  pinched.vertices.positions.bottomRows(n) = (-ball.vertices.positions).rowwise() + 2 * ball.vertices.positions.row(0);
+  pinched.faces.conservativeResize(2 * ball.face_count(), 3);
+  for (Eigen::Index f = 0; f < ball.face_count(); ++f)
+    for (int k = 0; k < 3; ++k) {  // mirrored through vertex 0: reversed faces keep the outside out
+      const int v = ball.faces(f, 2 - k);
+      pinched.faces(ball.face_count() + f, k) = v == 0 ? 0 : v + static_cast<int>(n);
+    }
+  test::expect_error<InvalidInput>([&] { smooth_surface(pinched); }, {"vertex 0", "more than one fan"});
+  EXPECT_NO_THROW(mesh_edges(ball.faces));
+}
 
 // How far s, its control points taken back by `back`, lies from the
 // reference smoothing, and how many patch corners are s's mesh's vertices
