@@ -43,6 +43,10 @@ class Command {
   bool force_ = false;
 };
 
+/// For options read into unsigned integers: refuses a minus sign, which
+/// CLI11 would wrap around (--seed -3 became 2^64 − 3).
+CLI::Validator non_negative_integer();
+
 std::unique_ptr<Command> make_convert_command(CLI::App& parent);
 std::unique_ptr<Command> make_info_command(CLI::App& parent);
 std::unique_ptr<Command> make_demo_command(CLI::App& parent);

@@ -24,7 +24,9 @@ class DemoCommand final : public Command {
                      "Simulated object: sphere, ellipsoid, torus, chalice, candlestick or a mesh file")
         ->capture_default_str();
     cli_->add_option("--steps", job_.steps, "Turntable steps per turn")->check(CLI::Range(2, 100000))->capture_default_str();
-    cli_->add_option("--seed", job_.seed, "Seed of the simulated sensor noise")->capture_default_str();
+    cli_->add_option("--seed", job_.seed, "Seed of the simulated sensor noise")
+        ->check(non_negative_integer())
+        ->capture_default_str();
     cli_->add_option("--row-step", job_.parameters.row_step,
                      "Keep the stripe centre of every n-th image row (with --steps: an even sampling, which "
                      "constriction and the six-split need)")

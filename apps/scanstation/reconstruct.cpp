@@ -53,7 +53,8 @@ class ReconstructCommand final : public Command {
     cli_->add_option("-o,--output", output_, "Boundary: a mesh (3D) or a polygon as svg / text (2D)")->required();
     cli_->add_option("--format", format_, "Input format, when the extension does not tell");
     auto* more = cli_->add_option("--continue", options_.constriction.extra_removals,
-                                  "Further removals once every point is on the boundary (§5.3)");
+                                  "Further removals once every point is on the boundary (§5.3)")
+                     ->check(non_negative_integer());
     auto* until = cli_->add_option("--until-indicator", until_,
                                    "Once every point is on the boundary, keep removing while the smallest "
                                    "γ-indicator (3D: sum of two) is below this value");

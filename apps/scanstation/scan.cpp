@@ -32,7 +32,9 @@ class ScanCommand final : public Command {
     cli_->add_flag("--resume", job_.resume, "Continue the interrupted session in -o after its last recorded step");
     cli_->add_option("--stop-after", job_.stop_after, "Record at most this many steps now (the session stays resumable)")
         ->check(CLI::Range(1, 100000));
-    cli_->add_option("--seed", job_.seed, "Seed of the simulated sensor noise")->capture_default_str();
+    cli_->add_option("--seed", job_.seed, "Seed of the simulated sensor noise")
+        ->check(non_negative_integer())
+        ->capture_default_str();
     cli_->add_option("--snapshot-every", job_.snapshot_every,
                      "Write the live boundary as SESSION/snapshots/boundary-step-NNNN.ply every K steps")
         ->check(CLI::Range(0, 100000));

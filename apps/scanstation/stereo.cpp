@@ -64,7 +64,7 @@ class StereoCommand final : public Command {
     cli_->add_option("--width", width_, "Simulated camera width (px)")->check(CLI::Range(64, 8192))->capture_default_str();
     cli_->add_option("--height", height_, "Simulated camera height (px)")->check(CLI::Range(48, 8192))->capture_default_str();
     cli_->add_flag("!--no-projector", projector_, "Switch the random-dot projector off");
-    cli_->add_option("--seed", seed_, "Sensor noise seed")->capture_default_str();
+    cli_->add_option("--seed", seed_, "Sensor noise seed")->check(non_negative_integer())->capture_default_str();
     cli_->add_option("--voxel", fusion_.voxel, "Fusion cube side (mm)")->capture_default_str();
     cli_->add_option("--min-views", fusion_.minimum_views, "Views a fused point needs")->capture_default_str();
     cli_->add_option("--outlier-radius", fusion_.outlier_radius, "Isolated-point radius after fusion (mm, 0 = keep all)")

@@ -290,6 +290,9 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --method voodoo").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --augment 0.5").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --guide 2,0").exit_code, 1);
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --continue -5");  // no wrap to 2^64 − 5
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--continue: expected a whole number of 0 or more, got -5"));
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "g.off") + " --guide off --report " + path(dir / "g.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "g.json"))["result"]["guide_faces"], 0);
