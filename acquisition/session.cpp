@@ -2,6 +2,7 @@
 
 #include "acquisition/station_calibration.h"
 #include "core/errors.h"
+#include "core/io/json_document.h"
 #include "core/io/station_geometry_json.h"
 #include "core/log.h"
 
@@ -76,9 +77,8 @@ json read_manifest_json(const fs::path& folder) {
   const fs::path path = folder / kManifest;
   if (!fs::exists(path))
     throw InvalidInput(path.string() + ": missing; " + folder.string() + " is not a scanstation session");
-  const json manifest = json::parse(io::read_file(path), nullptr, false);
-  if (manifest.is_discarded()) throw FormatError(FileLocation::whole(path), "a JSON document");
-  if (!manifest.is_object()) throw FormatError(FileLocation::whole(path), "a JSON object");
+  const json manifest = io::read_json_document(path);
+  if (!manifest.is_object()) throw FormatError(FileLocation::whole(path), "expected a JSON object");
   return manifest;
 }
 

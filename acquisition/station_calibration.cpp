@@ -4,6 +4,7 @@
 #include "acquisition/stereo_reconstruction.h"
 #include "acquisition/turntable_axis_calibration.h"
 #include "core/errors.h"
+#include "core/io/json_document.h"
 #include "core/io/station_geometry_json.h"
 #include "core/version.h"
 
@@ -328,17 +329,7 @@ StationCalibration station_calibration_from_json(const json& document, const std
 }
 
 StationCalibration read_station_calibration(const std::filesystem::path& file) {
-  const std::string text = io::read_file(file);
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann reports a byte offset; turn it into the line a reader can find.
-    const std::size_t byte = std::min<std::size_t>(e.byte, text.size());
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(byte > 0 ? byte - 1 : 0), '\n'));
-    throw FormatError(FileLocation::at_line(file, line), std::string("not valid JSON: ") + e.what());
-  }
-  return station_calibration_from_json(document, file);
+  return station_calibration_from_json(io::read_json_document(file), file);
 }
 
 void write_station_calibration(const std::filesystem::path& file, const StationCalibration& calibration,

@@ -275,6 +275,10 @@ TEST_F(RecordedSphere, MissingManifestFieldsAreNamed) {
   EXPECT_EQ(result.steps_used, kSteps);
   edit_manifest(damaged, [](json& m) { m.erase("geometry"); });
   test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json", "missing field \"geometry\""});
+  // A manifest cut short names the line where the JSON ends (it said only
+  // "manifest.json: a JSON document").
+  std::ofstream(damaged / "manifest.json") << "{\n  \"format\": \"scanstation-session\",\n  \"geometry\": {\n";
+  test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json:4: not valid JSON", "unexpected end"});
   fs::remove(damaged / "manifest.json");
   test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json: missing"});
 }
