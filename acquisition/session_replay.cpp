@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace scanstation::acquisition {
 
@@ -16,20 +17,38 @@ using nlohmann::json;
 
 namespace {
 
+// Why a decoded frame cannot stand for `camera`'s (empty when it can): the
+// size must be the camera's, the pixels grey (8 or 16 bits) or 8-bit colour,
+// as the station records them. Such a frame is skipped like an unreadable
+// one, not the whole replay refused.
+std::string frame_mismatch(const cv::Mat& frame, const PinholeCamera& camera) {
+  if (frame.cols != camera.width || frame.rows != camera.height)
+    return "a " + std::to_string(frame.cols) + "x" + std::to_string(frame.rows) + " image, not the camera's " +
+           std::to_string(camera.width) + "x" + std::to_string(camera.height);
+  if (frame.type() != CV_8UC1 && frame.type() != CV_16UC1 && frame.type() != CV_8UC3)
+    return "pixels of " + std::to_string(frame.channels()) + " channel(s) of " +
+           std::to_string(8 * frame.elemSize1()) + " bits, not 8- or 16-bit grey or 8-bit colour";
+  return {};
+}
+
 // The frames of one step that can be used, with a problem noted for each
 // that cannot. No laser-off frame → no frames at all.
 std::optional<StepFrames> load_step(const SessionContents& session, const SessionStep& step,
                                     const std::vector<int>& lasers, std::vector<std::string>& problems) {
   StepFrames frames;
   frames.angle_deg = step.angle_deg;
-  const auto unusable = [&](const SessionFrame& f, const char* what, const std::string& consequence) {
+  const auto unusable = [&](const SessionFrame& f, const std::string& what, const std::string& consequence) {
     problems.push_back((session.folder / f.file).string() + ": " + what + " (journal line " +
                        std::to_string(step.journal_line) + "): " + consequence);
   };
-  const auto load = [&](const SessionFrame& f) {
+  // The frame, or empty with `why` saying what is wrong with it.
+  const auto load = [&](const SessionFrame& f, std::string& why) {
     const fs::path path = session.folder / f.file;
-    return fs::exists(path) ? read_session_frame(path) : cv::Mat();
+    cv::Mat frame = fs::exists(path) ? read_session_frame(path) : cv::Mat();
+    why = !fs::exists(path) ? "missing" : frame.empty() ? "unreadable" : frame_mismatch(frame, session.manifest.geometry.camera);
+    return why.empty() ? frame : cv::Mat();
   };
+  std::string why;
   const auto off = std::find_if(step.frames.begin(), step.frames.end(), [](const SessionFrame& f) { return !f.laser; });
   const std::string step_name = "step " + std::to_string(step.step);
   if (off == step.frames.end()) {
@@ -37,17 +56,16 @@ std::optional<StepFrames> load_step(const SessionContents& session, const Sessio
                        " has no laser-off frame: step skipped");
     return std::nullopt;
   }
-  frames.off = load(*off);
+  frames.off = load(*off, why);
   if (frames.off.empty()) {
-    unusable(*off, fs::exists(session.folder / off->file) ? "unreadable" : "missing", step_name + " skipped");
+    unusable(*off, why, step_name + " skipped");
     return std::nullopt;
   }
   for (const SessionFrame& f : step.frames) {
     if (!f.laser || std::find(lasers.begin(), lasers.end(), *f.laser) == lasers.end()) continue;
-    cv::Mat on = load(f);
+    cv::Mat on = load(f, why);
     if (on.empty()) {
-      unusable(f, fs::exists(session.folder / f.file) ? "unreadable" : "missing",
-               step_name + " laser " + std::to_string(*f.laser) + " skipped");
+      unusable(f, why, step_name + " laser " + std::to_string(*f.laser) + " skipped");
       continue;
     }
     frames.on.emplace_back(*f.laser, std::move(on));
@@ -68,13 +86,19 @@ std::optional<StereoStepFrames> load_stereo_step(const SessionContents& session,
     return std::nullopt;
   }
   // A frame, or empty with a problem noted saying what happens instead.
+  const TurntableGeometry& geometry = session.manifest.geometry;
   const auto load = [&](int index, const std::string& consequence) {
-    const fs::path path = session.folder / step.frames[static_cast<std::size_t>(index)].file;
+    const SessionFrame& f = step.frames[static_cast<std::size_t>(index)];
+    const fs::path path = session.folder / f.file;
     cv::Mat frame = fs::exists(path) ? read_session_frame(path) : cv::Mat();
-    if (frame.empty())
-      problems.push_back(path.string() + ": " + (fs::exists(path) ? "unreadable" : "missing") + line + ": " +
-                         consequence);
-    return frame;
+    const std::string why =
+        !fs::exists(path) ? "missing"
+        : frame.empty()   ? "unreadable"
+                          : frame_mismatch(frame, f.camera == 0 || !geometry.right_camera ? geometry.camera
+                                                                                          : *geometry.right_camera);
+    if (why.empty()) return frame;
+    problems.push_back(path.string() + ": " + why + line + ": " + consequence);
+    return cv::Mat();
   };
   StereoStepFrames frames;
   frames.angle_deg = step.angle_deg;
@@ -88,7 +112,12 @@ std::optional<StereoStepFrames> load_stereo_step(const SessionContents& session,
 
 }  // namespace
 
-cv::Mat read_session_frame(const fs::path& file) { return cv::imread(file.string(), cv::IMREAD_UNCHANGED); }
+cv::Mat read_session_frame(const fs::path& file) {
+  cv::Mat frame = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  // An image editor may save a frame with an alpha channel: the colour is the frame.
+  if (frame.type() == CV_8UC4) cv::cvtColor(frame, frame, cv::COLOR_BGRA2BGR);
+  return frame;
+}
 
 ScanResult replay_session(const SessionContents& session, const ReplayOptions& options) {
   const auto start = std::chrono::steady_clock::now();

@@ -68,7 +68,8 @@ struct ScanResult {
 /// points into the object's own coordinates (manifest object.placement).
 ScanResult replay_session(const SessionContents& session, const ReplayOptions& options = {});
 
-/// A frame of a session as recorded (8 or 16 bit); empty if missing or unreadable.
+/// A frame of a session as recorded (8 or 16 bit; an alpha channel is dropped);
+/// empty if missing or unreadable.
 cv::Mat read_session_frame(const std::filesystem::path& file);
 
 /// The warning to print when the scan's two lasers disagree (laser_disagreement_message), else nullopt.

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 
 #include <numbers>
+#include <opencv2/imgproc.hpp>
 
 namespace scanstation::acquisition {
 
@@ -36,8 +37,14 @@ StereoScanSetup stereo_scan_setup(const TurntableGeometry& geometry, const Stere
 
 LaserScanPoints stereo_step_points(const StereoStepFrames& frames, const StereoScanSetup& setup) {
   const double angle = frames.angle_deg * std::numbers::pi / 180.0;
-  return stereo_view_points(setup.station, eight_bit(frames.left, "left"), eight_bit(frames.right, "right"), angle,
-                            setup.options, eight_bit(frames.colour, "colour"));
+  cv::Mat left = eight_bit(frames.left, "left"), right = eight_bit(frames.right, "right");
+  // One frame of the pair saved in colour, the other grey (an image editor
+  // rewrote one): the matcher needs one kind, so both go grey.
+  if (left.channels() != right.channels()) {
+    if (left.channels() == 3) cv::cvtColor(left, left, cv::COLOR_BGR2GRAY);
+    if (right.channels() == 3) cv::cvtColor(right, right, cv::COLOR_BGR2GRAY);
+  }
+  return stereo_view_points(setup.station, left, right, angle, setup.options, eight_bit(frames.colour, "colour"));
 }
 
 }  // namespace scanstation::acquisition

@@ -12,6 +12,8 @@
 #include "test_support.h"
 
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <numbers>
 
 namespace scanstation::acquisition {
@@ -203,6 +205,17 @@ TEST_F(RecordedSphere, ReplayGivesByteIdenticalPointsAndNewParametersOtherOnes) 
   EXPECT_FALSE(other.points.cloud.positions.isApprox(same.points.cloud.positions, 1e-12));
 }
 
+// Each problem names a frame and what is wrong with it, then what the
+// replay did instead, in this order.
+void expect_problems(const std::vector<std::string>& problems,
+                     const std::vector<std::pair<std::string, std::string>>& expected) {
+  ASSERT_EQ(problems.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_THAT(problems[i], testing::HasSubstr(expected[i].first));
+    EXPECT_THAT(problems[i], testing::HasSubstr(expected[i].second));
+  }
+}
+
 TEST_F(RecordedSphere, MissingFramesAreNamedAndTheRestReplayed) {
   test::ScratchFolder scratch;
   const fs::path damaged = copy(scratch);
@@ -210,13 +223,41 @@ TEST_F(RecordedSphere, MissingFramesAreNamedAndTheRestReplayed) {
   fs::remove(damaged / frame_file_name(5, std::nullopt));
   const ScanResult full = replay_session(read_session(session()));
   const ScanResult partial = replay_session(read_session(damaged));
-  ASSERT_EQ(partial.problems.size(), 2u);
-  EXPECT_THAT(partial.problems[0], testing::HasSubstr("step_0002_laser1.png: missing"));
-  EXPECT_THAT(partial.problems[0], testing::HasSubstr("step 2 laser 1 skipped"));
-  EXPECT_THAT(partial.problems[1], testing::HasSubstr("step_0005_off.png: missing"));
-  EXPECT_THAT(partial.problems[1], testing::HasSubstr("step 5 skipped"));
+  expect_problems(partial.problems, {{"step_0002_laser1.png: missing", "step 2 laser 1 skipped"},
+                                     {"step_0005_off.png: missing", "step 5 skipped"}});
   EXPECT_EQ(partial.steps_used, kSteps - 1);
   EXPECT_GT(partial.points.cloud.size(), full.points.cloud.size() / 2);
+  EXPECT_LT(partial.points.cloud.size(), full.points.cloud.size());
+}
+
+// Frames an image editor rewrote: with an alpha channel they are the same
+// frames; cut to another size they are named and skipped like missing ones
+// (the size mismatch refused the whole replay, without naming the file).
+TEST_F(RecordedSphere, RewrittenFramesAreUsedOrNamedAndSkipped) {
+  test::ScratchFolder scratch;
+  const fs::path edited = copy(scratch);
+  const auto rewrite = [&](const std::string& name, const auto& change) {
+    const cv::Mat frame = cv::imread((edited / name).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(frame.type(), CV_8UC1);
+    ASSERT_TRUE(cv::imwrite((edited / name).string(), change(frame)));
+  };
+  const auto with_alpha = [](const cv::Mat& grey) {
+    cv::Mat bgra;
+    cv::cvtColor(grey, bgra, cv::COLOR_GRAY2BGRA);
+    return bgra;
+  };
+  for (const int step : {1, 3}) rewrite(frame_file_name(step, 0), with_alpha);
+  const ScanResult full = replay_session(read_session(session()));
+  const ScanResult alpha = replay_session(read_session(edited));
+  EXPECT_TRUE(alpha.problems.empty());
+  EXPECT_EQ(alpha.points.cloud.positions, full.points.cloud.positions);
+  rewrite(frame_file_name(2, 1), [](const cv::Mat& f) { return cv::Mat(f, cv::Rect(0, 0, f.cols / 2, f.rows)); });
+  rewrite(frame_file_name(4, std::nullopt), [](const cv::Mat& f) { return cv::Mat(f, cv::Rect(0, 0, f.cols, f.rows - 1)); });
+  const ScanResult partial = replay_session(read_session(edited));
+  expect_problems(partial.problems,
+                  {{"step_0002_laser1.png: a 160x240 image, not the camera's 320x240", "step 2 laser 1 skipped"},
+                   {"step_0004_off.png: a 320x239 image", "step 4 skipped"}});
+  EXPECT_EQ(partial.steps_used, kSteps - 1);
   EXPECT_LT(partial.points.cloud.size(), full.points.cloud.size());
 }
 

@@ -9,6 +9,8 @@
 #include "test_support.h"
 
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace scanstation::acquisition {
 namespace {
@@ -65,6 +67,24 @@ TEST(StereoSession, ProjectorLitExactlyForThePairAndPointsAsReplayed) {
   const ScanResult result = replay_session(contents, options);
   EXPECT_EQ(replayed, live);
   EXPECT_EQ(result.steps_used, 3);
+
+  // Frames an image editor rewrote: the left frame of a pair saved with an
+  // alpha channel gives the same points (the pair goes grey; it stopped the
+  // replay: "the same size and type"); a colour frame cut to another size
+  // is named, and the step is coloured from its pair.
+  const fs::path left = folder / "s" / stereo_frame_file_name(1, 0, true);
+  cv::Mat bgra;
+  cv::cvtColor(cv::imread(left.string(), cv::IMREAD_UNCHANGED), bgra, cv::COLOR_GRAY2BGRA);
+  ASSERT_TRUE(cv::imwrite(left.string(), bgra));
+  const fs::path colour = folder / "s" / stereo_frame_file_name(2, 0, false);
+  const cv::Mat full = cv::imread(colour.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_TRUE(cv::imwrite(colour.string(), cv::Mat(full, cv::Rect(0, 0, full.cols - 1, full.rows))));
+  replayed.clear();
+  const ScanResult edited = replay_session(read_session(folder / "s"), options);
+  EXPECT_EQ(replayed, live);
+  ASSERT_EQ(edited.problems.size(), 1u);
+  EXPECT_THAT(edited.problems[0], testing::HasSubstr("step_0002_left.png: a 319x240 image, not the camera's 320x240"));
+  EXPECT_THAT(edited.problems[0], testing::HasSubstr("coloured from its pair"));
 
   // An edited right camera is refused like an edited left one; a stereo
   // manifest without it cannot be read.
