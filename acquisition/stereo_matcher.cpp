@@ -89,7 +89,7 @@ cv::Mat compute_disparity(const cv::Mat& left, const cv::Mat& right, const Stere
     // SGBM leaves the first num_disparities columns empty, as if every pixel
     // there could have the largest disparity. Widen both images on the left
     // so those pixels are matched against the disparities they can have.
-    const int pad = options.min_disparity + options.num_disparities;
+    const int pad = std::max(0, options.min_disparity + options.num_disparities);  // none when every disparity is negative
     cv::Mat wide_left, wide_right;
     cv::copyMakeBorder(left, wide_left, 0, 0, pad, 0, cv::BORDER_REPLICATE);
     cv::copyMakeBorder(right, wide_right, 0, 0, pad, 0, cv::BORDER_REPLICATE);

@@ -10,6 +10,7 @@
 #include "reconstruct/flintstone_svg.h"
 
 #include <cstdio>
+#include <numbers>
 
 namespace scanstation::app {
 
@@ -44,6 +45,7 @@ class ApproximateCommand final : public Command {
     cli_->add_option("--balls", balls_, "3D: write the flintstone balls of the approximation as a mesh (e.g. .ply)");
     cli_->add_option("--angle-threshold", tree_options_.angle_threshold,
                      "3D: corner angles (radians) below this are side-split, not three-split (§7.3.2)")
+        ->check(finite_range(0.0, std::numbers::pi))
         ->capture_default_str();
     cli_->add_option("--format", format_, "Input format, when the extension does not tell");
   }

@@ -1,5 +1,10 @@
 #include "command.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
 namespace scanstation::app {
 
 Command::Command(CLI::App& parent, const std::string& name, const std::string& description)
@@ -15,6 +20,23 @@ CLI::Validator non_negative_integer() {
                                                     : "expected a whole number of 0 or more, got " + value;
       },
       "");
+}
+
+CLI::Validator finite_range(double low, double high) {
+  return CLI::Validator(
+      [low, high](const std::string& value) {
+        double x = 0;
+        std::size_t used = 0;
+        try {
+          x = std::stod(value, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != value.size() || !std::isfinite(x) || x < low || x > high)
+          return fmt::format("expected a number in [{}, {}], got {}", low, high, value);
+        return std::string();
+      },
+      fmt::format("in [{} - {}]", low, high));
 }
 
 }  // namespace scanstation::app

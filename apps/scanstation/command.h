@@ -47,6 +47,10 @@ class Command {
 /// CLI11 would wrap around (--seed -3 became 2^64 − 3).
 CLI::Validator non_negative_integer();
 
+/// For floating-point options: a finite number in [low, high]. CLI::Range
+/// alone lets "nan" through (every comparison with it is false).
+CLI::Validator finite_range(double low, double high);
+
 std::unique_ptr<Command> make_convert_command(CLI::App& parent);
 std::unique_ptr<Command> make_info_command(CLI::App& parent);
 std::unique_ptr<Command> make_demo_command(CLI::App& parent);

@@ -57,7 +57,8 @@ class ReconstructCommand final : public Command {
                      ->check(non_negative_integer());
     auto* until = cli_->add_option("--until-indicator", until_,
                                    "Once every point is on the boundary, keep removing while the smallest "
-                                   "γ-indicator (3D: sum of two) is below this value");
+                                   "γ-indicator (3D: sum of two) is below this value")
+                     ->check(finite_range(-1e6, 1e6));
     more->excludes(until);
     cli_->add_option("--augment", augment_,
                      "When constriction locks (§5.4): auto (lower c0 from -0.1 to -1 until every point is on the "

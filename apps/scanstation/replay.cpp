@@ -29,7 +29,7 @@ class ReplayCommand final : public Command {
                      "of the geometry the session recorded; refused when made for other devices, incomplete or stale");
     cli_->add_option("--calibration-max-age", calibration_max_age_,
                      "With --calibration: refuse a calibration whose oldest part is older than this (days; 0: any age)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(finite_range(0.0, 1e6))
         ->capture_default_str();
     parameters_.add_to(*cli_);
     stereo_.add_to(*cli_);

@@ -48,7 +48,7 @@ class ScanCommand final : public Command {
                      "without one, or with 'sim-truth', the simulator's true geometry)");
     cli_->add_option("--calibration-max-age", job_.calibration_max_age,
                      "Refuse a calibration whose oldest part is older than this (days; 0: any age)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(finite_range(0.0, 1e6))
         ->capture_default_str();
     parameters_.add_to(*cli_);
     stereo_.add_to(*cli_);

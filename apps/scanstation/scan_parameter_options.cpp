@@ -1,25 +1,28 @@
 #include "scan_parameter_options.h"
 
+#include "command.h"
+
 namespace scanstation::app {
 
 void ScanParameterOptions::add_to(CLI::App& cli) {
   cli.add_option("--peak-fit", peak_fit, "Sub-pixel stripe centre: gaussian, centre_of_mass or parabolic")
       ->check(CLI::IsMember({"gaussian", "centre_of_mass", "parabolic"}));
   cli.add_option("--threshold-sigmas", threshold_sigmas, "A stripe peak must rise this many noise sigmas")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0.0, 1e6));
   cli.add_option("--min-contrast", minimum_contrast, "Floor of the peak threshold (grey levels)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0.0, 65535.0));
   cli.add_option("--min-width", minimum_width, "Narrowest stripe peak kept (pixels at half maximum)")
       ->check(CLI::Range(1, 1000));
   cli.add_option("--max-width", maximum_width, "Widest stripe peak kept (pixels at half maximum)")
       ->check(CLI::Range(1, 1000));
   cli.add_option("--double-peak-ratio", double_peak_ratio, "A second peak this strong makes a row ambiguous")
-      ->check(CLI::PositiveNumber);
-  cli.add_option("--min-height", minimum_height, "Points at or below this height are the platter (mm)");
+      ->check(finite_range(1e-9, 1e9));
+  cli.add_option("--min-height", minimum_height, "Points at or below this height are the platter (mm)")
+      ->check(finite_range(-1e9, 1e9));
   cli.add_option("--max-radius", maximum_radius, "Points farther from the axis are background (mm)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_range(1e-9, 1e9));
   cli.add_option("--outlier-radius", outlier_radius, "Radius outlier removal (mm; 0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_range(0.0, 1e9));
   cli.add_option("--outlier-neighbours", outlier_neighbours, "Neighbours a point needs within --outlier-radius")
       ->check(CLI::Range(1, 1000));
   cli.add_option("--row-step", row_step,

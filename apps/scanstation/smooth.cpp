@@ -55,18 +55,18 @@ class SmoothCommand final : public Command {
     cli_->add_option("--tension", tension_,
                      "The Step-2 constant t in b210 = b300 + t(b030* − b300), 1/3 in the thesis; larger values pull the "
                      "surface further along the tangent planes at the vertices (§9.9)")
-        ->check(CLI::Range(0.05, 0.95))
+        ->check(finite_range(0.05, 0.95))
         ->capture_default_str();
     cli_->add_option("--min-angle", min_angle_,
                      "adaptive-two-split: macro triangles with a smaller angle (degrees) are two-split with their "
                      "neighbour across their longest edge, where no neighbouring pair prevents it")
-        ->check(CLI::Range(0.0, 60.0))
+        ->check(finite_range(0.0, 60.0))
         ->capture_default_str();
     cli_->add_option("--max-move", max_move_,
                      "Step 5 (every split scheme): join an edge approximately (not G¹ there, counted as dependent) where meeting "
                      "G¹ exactly would move a control point farther than this many macro edge lengths (a bulge); "
                      "default: always exact, as the thesis")
-        ->check(CLI::PositiveNumber);
+        ->check(finite_range(1e-9, 1e9));
     cli_->add_option("--density", density_, "Tessellation: segments per patch edge")->capture_default_str();
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
     cli_->add_option("--zebra", zebra_, "Also write a reflection-line (zebra) PNG: smooth surface left, mesh right");

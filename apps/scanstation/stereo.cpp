@@ -35,6 +35,8 @@ cv::Mat read_image(const std::filesystem::path& path, int flags) {
   return image;
 }
 
+std::string size_text(const cv::Mat& image) { return std::to_string(image.cols) + "x" + std::to_string(image.rows); }
+
 nlohmann::json rate_json(const acquisition::BadPixelRate& r) {
   return {{"bad_above_1px", r.above_1px}, {"bad_above_2px", r.above_2px}, {"density", r.density},
           {"valid_truth_pixels", r.valid_pixels}};
@@ -65,9 +67,14 @@ class StereoCommand final : public Command {
     cli_->add_option("--height", height_, "Simulated camera height (px)")->check(CLI::Range(48, 8192))->capture_default_str();
     cli_->add_flag("!--no-projector", projector_, "Switch the random-dot projector off");
     cli_->add_option("--seed", seed_, "Sensor noise seed")->check(non_negative_integer())->capture_default_str();
-    cli_->add_option("--voxel", fusion_.voxel, "Fusion cube side (mm)")->capture_default_str();
-    cli_->add_option("--min-views", fusion_.minimum_views, "Views a fused point needs")->capture_default_str();
+    cli_->add_option("--voxel", fusion_.voxel, "Fusion cube side (mm)")
+        ->check(finite_range(1e-6, 1e6))
+        ->capture_default_str();
+    cli_->add_option("--min-views", fusion_.minimum_views, "Views a fused point needs")
+        ->check(CLI::Range(1, 3600))
+        ->capture_default_str();
     cli_->add_option("--outlier-radius", fusion_.outlier_radius, "Isolated-point radius after fusion (mm, 0 = keep all)")
+        ->check(finite_range(0.0, 1e6))
         ->capture_default_str();
     cli_->add_option("--encoding", encoding_,
                      "fixed16: 16-bit, disparity x 16 (OpenCV's convention); pixels8: 8-bit whole pixels like "
@@ -76,23 +83,36 @@ class StereoCommand final : public Command {
         ->capture_default_str();
     cli_->add_option("--truth", truth_, "Ground-truth disparity image in pixels (0 = unknown): report bad-pixel rates");
     cli_->add_flag("--plain", plain_, "Plain SGBM as in OpenCV's stereo_match sample (the reference), ignores the rest");
-    cli_->add_option("--min-disparity", options_.min_disparity, "Smallest disparity")->capture_default_str();
-    cli_->add_option("--disparities", options_.num_disparities, "Disparity range, a multiple of 16")->capture_default_str();
-    cli_->add_option("--block", options_.block_size, "SGBM block size (odd)")->capture_default_str();
-    cli_->add_option("--p1", options_.p1, "SGBM penalty P1 (0 = 8·channels·block²)")->capture_default_str();
-    cli_->add_option("--p2", options_.p2, "SGBM penalty P2 (0 = 32·channels·block²)")->capture_default_str();
-    cli_->add_option("--uniqueness", options_.uniqueness_ratio, "SGBM uniqueness ratio (%)")->capture_default_str();
-    cli_->add_option("--speckle-window", options_.speckle_window_size, "SGBM speckle window (0 = off)")->capture_default_str();
-    cli_->add_option("--speckle-range", options_.speckle_range, "SGBM speckle range")->capture_default_str();
+    cli_->add_option("--min-disparity", options_.min_disparity,
+                     "Smallest disparity (0 or more: the PNG encodings hold no negative disparity)")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    cli_->add_option("--disparities", options_.num_disparities, "Disparity range, a multiple of 16")
+        ->check(CLI::Range(16, 4096))
+        ->capture_default_str();
+    cli_->add_option("--block", options_.block_size, "SGBM block size (odd)")->check(CLI::Range(1, 255))->capture_default_str();
+    cli_->add_option("--p1", options_.p1, "SGBM penalty P1 (0 = 8·channels·block²)")
+        ->check(CLI::Range(0, 1 << 24))
+        ->capture_default_str();
+    cli_->add_option("--p2", options_.p2, "SGBM penalty P2 (0 = 32·channels·block²)")
+        ->check(CLI::Range(0, 1 << 24))
+        ->capture_default_str();
+    cli_->add_option("--uniqueness", options_.uniqueness_ratio, "SGBM uniqueness ratio (%)")->check(CLI::Range(0, 100))->capture_default_str();
+    cli_->add_option("--speckle-window", options_.speckle_window_size, "SGBM speckle window (0 = off)")
+        ->check(CLI::Range(0, 1 << 20))
+        ->capture_default_str();
+    cli_->add_option("--speckle-range", options_.speckle_range, "SGBM speckle range")->check(CLI::Range(0, 1 << 16))->capture_default_str();
     cli_->add_flag("!--no-pad", options_.pad_left_edge, "Leave the left band of --disparities columns unmatched");
     cli_->add_flag("!--no-left-right-check", options_.left_right_check, "Skip the left-right consistency check");
-    cli_->add_option("--lr-tolerance", options_.left_right_tolerance, "Left-right check tolerance (px)")->capture_default_str();
+    cli_->add_option("--lr-tolerance", options_.left_right_tolerance, "Left-right check tolerance (px)")
+        ->check(finite_range(0.0, 1e4))
+        ->capture_default_str();
     cli_->add_option("--post", post_, "Post-filter: fill (gaps from their far side), wls (ximgproc), none")
         ->check(CLI::IsMember({"fill", "wls", "none"}))
         ->capture_default_str();
     cli_->add_option("--median", options_.median_size, "Median filter size after filling: 0, 3 or 5")->capture_default_str();
-    cli_->add_option("--lambda", options_.wls_lambda, "WLS smoothness")->capture_default_str();
-    cli_->add_option("--sigma", options_.wls_sigma, "WLS edge sensitivity")->capture_default_str();
+    cli_->add_option("--lambda", options_.wls_lambda, "WLS smoothness")->check(finite_range(0.0, 1e9))->capture_default_str();
+    cli_->add_option("--sigma", options_.wls_sigma, "WLS edge sensitivity")->check(finite_range(1e-6, 1e6))->capture_default_str();
   }
 
   void run(CommandContext& context) override {
@@ -106,6 +126,9 @@ class StereoCommand final : public Command {
       // Filled gaps would be invented geometry: only matched pixels, unless asked.
       options_.post_filter = cli_->count("--post") ? post.at(post_) : acquisition::DisparityPostFilter::none;
       if (!cli_->count("--median")) options_.median_size = 0;
+      if (views_ < fusion_.minimum_views)
+        throw InvalidInput("--views " + std::to_string(views_) + ": a fused point needs --min-views " +
+                           std::to_string(fusion_.minimum_views) + ", so no point could be kept");
       simulate(context);
       return;
     }
@@ -116,6 +139,18 @@ class StereoCommand final : public Command {
 
     StageTimer read_timer(context.report, "read");
     const cv::Mat left = read_image(left_, cv::IMREAD_COLOR), right = read_image(right_, cv::IMREAD_COLOR);
+    if (left.size() != right.size())
+      throw InvalidInput("stereo: " + left_.string() + " is " + size_text(left) + " and " + right_.string() + " is " +
+                         size_text(right) + ": the images of a rectified pair have one size");
+    // Checked before matching, so that a wrong --truth leaves no disparity image behind.
+    cv::Mat truth;
+    if (truth_) {
+      truth = read_image(*truth_, cv::IMREAD_UNCHANGED);
+      if (truth.channels() != 1 || truth.size() != left.size())
+        throw InvalidInput("--truth " + truth_->string() + ": expected a one-channel image of the pair's size (" +
+                           size_text(left) + "), found " + std::to_string(truth.channels()) + " channel(s), " +
+                           size_text(truth));
+    }
     read_timer.stop();
     StageTimer match_timer(context.report, "match");
     const cv::Mat disparity = acquisition::compute_disparity(left, right, options);
@@ -138,9 +173,6 @@ class StereoCommand final : public Command {
     std::printf("%dx%d disparity, %.1f%% of pixels matched\n", disparity.cols, disparity.rows,
                 100.0 * result["matched_fraction"].get<double>());
     if (truth_) {
-      const cv::Mat truth = read_image(*truth_, cv::IMREAD_UNCHANGED);
-      if (truth.channels() != 1 || truth.size() != disparity.size())
-        throw InvalidInput("--truth " + truth_->string() + ": expected a one-channel image of the pair's size");
       const acquisition::BadPixelRate rate = acquisition::bad_pixel_rate(disparity, truth);
       result["truth"] = rate_json(rate);
       std::printf("bad pixels: %.1f%% above 1 px, %.1f%% above 2 px (no disparity counts as bad)\n",

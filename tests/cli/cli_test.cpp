@@ -498,6 +498,10 @@ TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --density 0").exit_code, 1);
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --scheme bogus").exit_code, 1);
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --normals given").exit_code, 1);
+  // "nan" passes a plain range check (every comparison with it is false).
+  r = scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --tension nan");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--tension: expected a number in [0.05, 0.95], got nan"));
 }
 
 TEST(Cli, StereoOnTheMiddleburyPairWithGroundTruth) {
