@@ -58,6 +58,7 @@ class CalibrateCommand final : public Command {
     cli_->add_option("--square", square_,
                      "Square size of the chessboard (mm); with --backend sim the rendered board's, by default 10 for "
                      "camera, turntable and laser")
+        ->check(finite_range(1e-6, 1e6))
         ->capture_default_str();
 
     CLI::App* camera = cli_->add_subcommand("camera", "Intrinsics and lens distortion from chessboard views");
@@ -72,7 +73,9 @@ class CalibrateCommand final : public Command {
     laser->add_option("--laser", laser_, "Index of the laser (required with images; sim: all lasers)");
     laser->add_option("--off", off_images_, "Board images with the laser off (corners)");
     laser->add_option("--on", on_images_, "The same board poses with the laser on, in the same order");
-    laser->add_option("--inlier-distance", laser_options_.inlier_distance, "RANSAC inlier band (mm)")->capture_default_str();
+    laser->add_option("--inlier-distance", laser_options_.inlier_distance, "RANSAC inlier band (mm)")
+        ->check(finite_range(1e-9, 1e6))
+        ->capture_default_str();
 
     CLI::App* stereo = cli_->add_subcommand("stereo", "Stereo pair: both cameras and their relative pose");
     stereo->add_option("--left", left_images_, "Left chessboard images (files, folders, list files)");
@@ -89,7 +92,6 @@ class CalibrateCommand final : public Command {
     if (std::sscanf(board_text_.c_str(), "%dx%d", &board_.width, &board_.height) != 2 || board_.width < 2 ||
         board_.height < 2)
       throw InvalidInput("--board " + board_text_ + ": expected COLUMNSxROWS inner corners, e.g. 9x6");
-    if (!(square_ > 0)) throw InvalidInput("--square: expected a positive size");
     sim_ = station_.backend == "sim";
     const std::string part = cli_->get_subcommands().front()->get_name();
     // Without --station, the simulated stereo pair is the built-in stereo station's (`scan --rig stereo`).
@@ -291,10 +293,14 @@ class CalibrateCommand final : public Command {
 
   // Adds the options of the board on the platter at several angles from images.
   void add_turntable_options(CLI::App& sub) {
-    sub.add_option("--angles", angles_deg_, "Turntable angle of each image (degrees)")->delimiter(',');
-    sub.add_option("--step", step_deg_, "Images taken every STEP degrees from 0 (instead of --angles)");
+    sub.add_option("--angles", angles_deg_, "Turntable angle of each image (degrees)")
+        ->delimiter(',')
+        ->check(finite_range(-36000.0, 36000.0));
+    sub.add_option("--step", step_deg_, "Images taken every STEP degrees from 0 (instead of --angles)")
+        ->check(finite_range(1e-6, 360.0));
     sub.add_option("--lowest-corner-height", lowest_corner_height_,
-                   "Height of the board's lowest inner corner above the platter top (mm)");
+                   "Height of the board's lowest inner corner above the platter top (mm)")
+        ->check(finite_range(-1e6, 1e6));
     sub.add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")->capture_default_str();
   }
 

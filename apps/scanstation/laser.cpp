@@ -24,7 +24,7 @@ class LaserCommand final : public Command {
     cli_->add_option("index", index_, "Laser number (0 = first [[laser]] of the station)")->required();
     cli_->add_option("state", state_, "on or off")->required()->check(CLI::IsMember({"on", "off"}));
     cli_->add_option("--hold", hold_, "Seconds to keep the laser on (0: until interrupted)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finite_range(0.0, 1e7));
   }
 
   void run(CommandContext& context) override {

@@ -15,8 +15,11 @@ class TurntableCommand final : public Command {
       : Command(parent, "turntable", "Rotate the turntable (the motor is disabled again on exit)") {
     options_.add_to(*cli_);
     auto* group = cli_->add_option_group("motion");
-    group->add_option("--rotate", rotate_, "Rotate by DEG degrees (negative: backwards)");
-    group->add_option("--to", to_, "Rotate to the absolute angle DEG by the shorter way");
+    // A hundred turns either way at most: beyond that a number is a typo (1e300 degrees came out as 0).
+    group->add_option("--rotate", rotate_, "Rotate by DEG degrees (negative: backwards)")
+        ->check(finite_range(-36000.0, 36000.0));
+    group->add_option("--to", to_, "Rotate to the absolute angle DEG by the shorter way")
+        ->check(finite_range(-36000.0, 36000.0));
     group->add_flag("--home", home_, "Seek the home switch, then the angle is 0");
     group->require_option(1);
   }
