@@ -145,6 +145,7 @@ class GraphCommand final : public Command {
         report(context, E.rows(), "edges");
         return;
       }
+      warn_of_lens_triples(context, V.rows());
       const Eigen::MatrixX3i T = type_ ? (*type_ == "hull" ? gamma_graph(V, -1.0, 1.0) : gamma_graph(V, GammaRange{}))
                                  : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])
                                                    : gamma_graph(V, GammaRange{range_[0], range_[1], range_[2], range_[3]});
@@ -162,6 +163,20 @@ class GraphCommand final : public Command {
   }
 
  private:
+  // Lens neighbourhoods (c1 < 0) in 3D are decided triple by triple
+  // (reconstruct/gamma_graph.h: surface samples put most triples through a
+  // solid's empty inside in the graph), so the time grows with N³: 1000
+  // points took 43 s on a 2-core machine. Say so before a long run.
+  void warn_of_lens_triples(CommandContext& context, Eigen::Index n) const {
+    const bool lenses = !type_ && (!gamma_.empty() ? gamma_[1] < 0 : range_[2] < 0);
+    if (!lenses || n <= 1500) return;
+    const double triples = static_cast<double>(n) * static_cast<double>(n - 1) * static_cast<double>(n - 2) / 6.0;
+    const double minutes = 43.0 / 60.0 * triples / 1.66e8;
+    context.log->warn("γ with c1 < 0 in 3D decides each of the {:.3g} triples of {} points: expect roughly {:.0f} "
+                      "minutes (1000 points take about 45 s)",
+                      triples, n, minutes);
+  }
+
   void report(CommandContext& context, Eigen::Index count, const char* what) const {
     context.report["result"] = {{"simplices", count}, {"kind", what}};
     std::printf("wrote %s: %lld %s\n", output_.c_str(), static_cast<long long>(count), what);
