@@ -2,6 +2,7 @@
 
 #include "acquisition/station_calibration.h"
 #include "core/errors.h"
+#include "core/io/file_access.h"
 #include "core/io/json_document.h"
 #include "core/io/station_geometry_json.h"
 #include "core/log.h"
@@ -387,7 +388,7 @@ SessionRecorder SessionRecorder::create(const fs::path& folder, const SessionMan
       fs::remove(folder / name);
     for (const char* name : {"frames", "snapshots"}) fs::remove_all(folder / name);
   }
-  fs::create_directories(folder / "frames");
+  io::make_folder(folder / "frames");
   io::write_file_atomically(folder / kManifest, to_json(manifest).dump(2) + "\n", overwrite);
   // The recorder holds the manifest as every reader will see it (numbers
   // after their round trip through the file), so the points it computes live
@@ -412,7 +413,7 @@ SessionRecorder SessionRecorder::resume(const fs::path& folder) {
   SessionRecorder recorder(folder, contents.manifest, open_journal(journal, false),
                            static_cast<int>(contents.steps.size()));
   recorder.notes_ = contents.problems;
-  fs::create_directories(folder / "frames");
+  io::make_folder(folder / "frames");
   return recorder;
 }
 

@@ -3,6 +3,7 @@
 #include "acquisition/outlier_removal.h"
 #include "acquisition/stereo_step_points.h"
 #include "core/errors.h"
+#include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
 #include "core/version.h"
 
@@ -194,7 +195,7 @@ std::optional<std::string> laser_agreement_warning(const ScanResult& result) {
 
 json write_scan_results(const fs::path& folder, const SessionContents& session, const ScanResult& result,
                         const json& extra, io::Overwrite overwrite) {
-  fs::create_directories(folder);
+  io::make_folder(folder);
   io::write_points(folder / "points.ply", result.points.cloud, {std::nullopt, std::nullopt, overwrite});
   json per_laser = json::array();
   for (const LaserScanPoints& laser : result.by_laser) per_laser.push_back(laser.cloud.size());

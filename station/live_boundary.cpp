@@ -1,5 +1,6 @@
 #include "station/live_boundary.h"
 
+#include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
 #include "core/station_geometry.h"
 
@@ -79,7 +80,7 @@ LiveStep LiveBoundary::add_step(int step, double angle_deg, const std::vector<ac
     char name[64];
     std::snprintf(name, sizeof name, "boundary-step-%04d.ply", step);
     live.snapshot = options_.snapshot_folder / name;
-    std::filesystem::create_directories(options_.snapshot_folder);
+    io::make_folder(options_.snapshot_folder);
     io::write_mesh(*live.snapshot, mesh, {std::nullopt, std::nullopt, options_.overwrite});
   }
   live.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,6 +2,7 @@
 
 #include "core/describe.h"
 #include "core/errors.h"
+#include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_measures.h"
 #include "reconstruct/boundary_reconstruction.h"
@@ -200,7 +201,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
       boundary_report["live"] = {{"steps", live->steps()},
                                  {"wider_repairs", live->constriction().wider_repairs()},
                                  {"sight_line_cells", live->sight_line_cells()}};
-    fs::create_directories(folder);
+    io::make_folder(folder);
     io::write_mesh(mesh_path, mesh, {std::nullopt, std::nullopt, options.overwrite});
     outputs["mesh"] = mesh_path.string();
     seconds["write_mesh"] = watch.lap();

@@ -52,9 +52,9 @@ class ApproximateCommand final : public Command {
 
   void run(CommandContext& context) override {
     if (!level_ && !max_error_) throw InvalidInput("give --level L or --max-error E");
-    io::check_writable(output_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
     for (const auto& extra : {svg_, balls_})
-      if (extra) io::check_writable(*extra, context.overwrite);
+      if (extra) io::check_output_file(*extra, context.overwrite);
     const BoundaryInput input = read_boundary(input_, format_, context.progress.stage("read"));
     context.progress.finish();
     if (input.polygon) {

@@ -2,6 +2,7 @@
 // (each frame exposed only after the laser settled).
 #include "command.h"
 #include "core/errors.h"
+#include "core/io/file_access.h"
 #include "core/log.h"
 #include "drivers/frame_gate.h"
 #include "sim/devices/open_station.h"
@@ -30,7 +31,7 @@ class CaptureCommand final : public Command {
     if (laser_ && (*laser_ < 0 || *laser_ >= static_cast<int>(station->lasers.size())))
       throw InvalidInput("--laser " + std::to_string(*laser_) + ": the station has " +
                          std::to_string(station->lasers.size()) + " laser(s)");
-    std::filesystem::create_directories(folder_);
+    io::make_folder(folder_);
     drivers::Camera& camera = *station->camera;
     const auto timeout = options_.description().camera.timeout;
     StageTimer timer(context.report, "capture");

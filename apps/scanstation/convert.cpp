@@ -53,7 +53,7 @@ class ConvertCommand final : public Command {
   void run(CommandContext& context) override {
     const io::FileFormat in = io::resolve_format(input_, from_);
     const io::FileFormat out = io::resolve_format(output_, to_);
-    io::check_writable(output_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
     io::WriteOptions write{to_, encoding(), context.overwrite};
     io::ReadOptions read{from_, context.progress.stage("read")};
     nlohmann::json& input_report = context.report["input"];

@@ -106,7 +106,7 @@ class GraphCommand final : public Command {
 
   void run(CommandContext& context) override {
     if (gamma_.empty() && range_.empty() && !type_) throw InvalidInput("give one of --gamma, --gamma-range or --type");
-    io::check_writable(output_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
     const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
     context.progress.finish();
     StageTimer timer(context.report, "graph");

@@ -29,7 +29,7 @@ class InsideCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    io::check_writable(output_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
     const BoundaryInput input = read_boundary(boundary_, format_, context.progress.stage("read"));
     const PointCloud queries = io::read_points(points_, {std::nullopt, context.progress.stage("read points")});
     context.progress.finish();

@@ -27,7 +27,7 @@ class IntersectCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    if (pairs_) io::check_writable(*pairs_, context.overwrite);
+    if (pairs_) io::check_output_file(*pairs_, context.overwrite);
     const BoundaryInput a = read_boundary(a_, std::nullopt, context.progress.stage("read A"));
     const BoundaryInput b = read_boundary(b_, std::nullopt, context.progress.stage("read B"));
     context.progress.finish();

@@ -127,8 +127,8 @@ class ReconstructCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    io::check_writable(output_, context.overwrite);
-    if (svg_) io::check_writable(*svg_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
+    if (svg_) io::check_output_file(*svg_, context.overwrite);
     options_.constriction.until_indicator = until_;
     if (flips_ == "off") options_.flips.reset();
     if (flips_ == "area") options_.flips = FlipCriterion::area;
@@ -139,7 +139,7 @@ class ReconstructCommand final : public Command {
     configure_guide();
     if (method_ == "voronoi-skeleton") options_.voronoi_skeleton = VoronoiSkeletonOptions{seeds_};
     configure_augmentation();
-    if (interior_) io::check_writable(*interior_, context.overwrite);
+    if (interior_) io::check_output_file(*interior_, context.overwrite);
     StageTimer read_timer(context.report, "read");
     const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
     context.progress.finish();

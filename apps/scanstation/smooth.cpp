@@ -76,9 +76,9 @@ class SmoothCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    io::check_writable(output_, context.overwrite);
-    if (patches_) io::check_writable(*patches_, context.overwrite);
-    if (zebra_) io::check_writable(*zebra_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
+    if (patches_) io::check_output_file(*patches_, context.overwrite);
+    if (zebra_) io::check_output_file(*zebra_, context.overwrite);
     // Without --scheme the input decides, as in reconstruct: a polygon (svg,
     // or 2D points in boundary order) gets the curve of §9.2.
     const bool scheme_given = cli_->count("--scheme") > 0;

@@ -116,7 +116,7 @@ class StereoCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    io::check_writable(output_, context.overwrite);
+    io::check_output_file(output_, context.overwrite);
     const std::map<std::string, acquisition::DisparityPostFilter> post{
         {"fill", acquisition::DisparityPostFilter::fill},
         {"wls", acquisition::DisparityPostFilter::wls},

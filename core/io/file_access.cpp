@@ -83,6 +83,27 @@ void check_writable(const fs::path& path, Overwrite overwrite) {
   if (fs::is_directory(path, ec)) throw InvalidInput(path.string() + ": is a folder, expected a file name");
 }
 
+void check_output_file(const fs::path& path, Overwrite overwrite) {
+  check_writable(path, overwrite);
+  const fs::path folder = path.parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !fs::is_directory(folder, ec))
+    throw InvalidInput(path.string() + ": the folder " + folder.string() +
+                       (fs::exists(folder, ec) ? " is a file" : " does not exist"));
+}
+
+void make_folder(const fs::path& folder) {
+  std::error_code ec;
+  for (fs::path part = folder; !part.empty(); part = part.parent_path()) {
+    if (fs::is_directory(part, ec)) break;
+    if (fs::exists(part, ec))
+      throw InvalidInput(folder.string() + ": " + (part == folder ? "is a file, expected a folder" : part.string() + " is a file"));
+    if (part == part.parent_path()) break;
+  }
+  fs::create_directories(folder, ec);
+  if (ec) throw IoError(os_error("cannot create the folder", folder, ec.value()));
+}
+
 namespace {
 // Creates a fresh temporary file beside `path`; the mode 0666 is reduced by
 // the umask as for any new file.

@@ -33,4 +33,13 @@ void write_file_atomically_streamed(const std::filesystem::path& path, const std
 /// command fail before doing long work whose result it could not keep.
 void check_writable(const std::filesystem::path& path, Overwrite overwrite);
 
+/// check_writable for a command's own output file, whose folder the command
+/// does not create: a missing folder is refused before any work (InvalidInput),
+/// not found when the result is written.
+void check_output_file(const std::filesystem::path& path, Overwrite overwrite);
+
+/// Creates `folder` and its parents as needed. InvalidInput when it, or a
+/// folder on the way, is a file; IoError when the system refuses.
+void make_folder(const std::filesystem::path& folder);
+
 }  // namespace scanstation::io

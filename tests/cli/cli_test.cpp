@@ -104,12 +104,18 @@ TEST(Cli, BadInputExitsOneWithFileAndLine) {
   EXPECT_FALSE(std::filesystem::exists(dir / "never.ply"));
 }
 
-TEST(Cli, UnwritableOutputIsARuntimeFailure) {
+// An output whose folder is missing is a bad option, found before the work
+// (exit 1; it was found when the result was written, an OS error, exit 2).
+TEST(Cli, OutputInAMissingFolderIsRefusedBeforeTheWork) {
   ScratchFolder dir;
-  const Outcome r = scanstation("convert " + path(test::cgal_data("meshes/tetrahedron.off")) + " " +
-                            path(dir / "no-such-folder/out.ply"));
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, testing::HasSubstr("no-such-folder"));
+  Outcome r = scanstation("convert " + path(test::cgal_data("meshes/tetrahedron.off")) + " " +
+                          path(dir / "no-such-folder/out.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("no-such-folder does not exist"));
+  r = scanstation("reconstruct " + path(test::cgal_data("meshes/tetrahedron.off")) + " -o " + path(dir / "m.ply") +
+                  " --report " + path(dir / "no-such-folder/r.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.ply"));
 }
 
 TEST(Cli, JsonProgressIsOneObjectPerLine) {

@@ -82,5 +82,25 @@ TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
   expect_error<InvalidInput>([&] { check_writable(dir.path(), Overwrite::replace); }, {"folder"});
 }
 
+// A command's output file is refused before the work when its folder is
+// missing or is a file (it was an IoError once the result was written);
+// folders a command creates are refused when a file is in the way (it was a
+// std::filesystem error, exit code 2).
+TEST(OutputFolders, MissingOrFileInTheWayAreNamedBeforeAnyWork) {
+  ScratchFolder dir;
+  std::ofstream(dir / "file.txt") << "x";
+  EXPECT_NO_THROW(check_output_file(dir / "out.ply", Overwrite::refuse));
+  expect_error<InvalidInput>([&] { check_output_file(dir / "no" / "out.ply", Overwrite::refuse); },
+                             {"out.ply", "does not exist"});
+  expect_error<InvalidInput>([&] { check_output_file(dir / "file.txt" / "out.ply", Overwrite::refuse); },
+                             {"file.txt is a file"});
+  make_folder(dir / "a" / "b");
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "a" / "b"));
+  EXPECT_NO_THROW(make_folder(dir / "a" / "b"));
+  expect_error<InvalidInput>([&] { make_folder(dir / "file.txt"); }, {"file.txt: is a file, expected a folder"});
+  expect_error<InvalidInput>([&] { make_folder(dir / "file.txt" / "frames"); }, {"file.txt is a file"});
+  EXPECT_EQ(read_file(dir / "file.txt"), "x");
+}
+
 }  // namespace
 }  // namespace scanstation::io
