@@ -62,6 +62,7 @@ class ApproximateCommand final : public Command {
       run_2d(context, input);
     } else {
       if (svg_) throw InvalidInput("--svg is for 2D polygons; use --balls for a mesh");
+      require_mesh_output(output_, "the approximation");
       run_3d(context, input);
     }
   }

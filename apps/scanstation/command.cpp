@@ -1,5 +1,8 @@
 #include "command.h"
 
+#include "core/errors.h"
+#include "core/io/file_format.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -20,6 +23,14 @@ CLI::Validator non_negative_integer() {
                                                     : "expected a whole number of 0 or more, got " + value;
       },
       "");
+}
+
+void require_mesh_output(const std::filesystem::path& output, const std::string& what) {
+  const io::FileFormat format = io::resolve_format(output, std::nullopt);
+  if (format == io::FileFormat::xyz || format == io::FileFormat::svg)
+    throw InvalidInput(output.string() + ": " + what + " is a triangle mesh, written as ply, off, obj or stl (" +
+                       io::format_name(format) +
+                       (format == io::FileFormat::xyz ? " would keep its points only)" : " holds 2D polygons)"));
 }
 
 CLI::Validator finite_range(double low, double high) {

@@ -7,6 +7,7 @@
 #include "core/report.h"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <memory>
 #include <spdlog/logger.h>
 #include <string>
@@ -50,6 +51,11 @@ CLI::Validator non_negative_integer();
 /// For floating-point options: a finite number in [low, high]. CLI::Range
 /// alone lets "nan" through (every comparison with it is false).
 CLI::Validator finite_range(double low, double high);
+
+/// Refuses, before the work, an output name whose format cannot hold a
+/// triangle mesh (xyz would keep the points only, svg holds 2D polygons);
+/// `what` names the result ("the boundary", "the smooth surface", ...).
+void require_mesh_output(const std::filesystem::path& output, const std::string& what);
 
 std::unique_ptr<Command> make_convert_command(CLI::App& parent);
 std::unique_ptr<Command> make_info_command(CLI::App& parent);

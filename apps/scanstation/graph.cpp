@@ -145,6 +145,7 @@ class GraphCommand final : public Command {
         report(context, E.rows(), "edges");
         return;
       }
+      if (!json) require_mesh_output(output_, "a 3D graph of triangles");
       warn_of_lens_triples(context, V.rows());
       const Eigen::MatrixX3i T = type_ ? (*type_ == "hull" ? gamma_graph(V, -1.0, 1.0) : gamma_graph(V, GammaRange{}))
                                  : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])

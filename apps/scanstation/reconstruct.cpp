@@ -150,6 +150,7 @@ class ReconstructCommand final : public Command {
     if (method_ == "min-area-change") options_.constriction.criterion = ConstrictionCriterion::minimal_area_change;
     if (method_ == "area-and-gamma" || (method_ == "auto" && cloud.dimension == 3))
       options_.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
+    require_output_format(cloud.dimension);
     nlohmann::json& result = context.report["result"];
     if (cloud.dimension == 2) {
       if (!viewpoint_.empty() || viewpoints_)
@@ -271,6 +272,17 @@ class ReconstructCommand final : public Command {
       std::printf("constriction locked: %zu points stayed inside (listed in the report); the boundary written is the "
                   "best found\n",
                   s.interior_vertices.size());
+  }
+
+  // Checked before the work: the format of -o must hold the answer (an .xyz
+  // output kept a surface's points and dropped its triangles).
+  void require_output_format(int dimension) const {
+    const io::FileFormat format = io::resolve_format(output_, std::nullopt);
+    const bool text_or_svg = format == io::FileFormat::xyz || format == io::FileFormat::svg;
+    if (dimension == 2 && !text_or_svg)
+      throw InvalidInput(output_.string() + ": a polygon is written as svg or as a text list (.xy, .txt), not " +
+                         io::format_name(format));
+    if (dimension == 3) require_mesh_output(output_, "the boundary");
   }
 
   std::filesystem::path input_, output_;

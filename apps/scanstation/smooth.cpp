@@ -102,6 +102,7 @@ class SmoothCommand final : public Command {
     if (mesh.face_count() == 0)
       throw InvalidInput(input_.string() + ": points without triangles; smoothing needs a closed triangle mesh "
                          "(`scanstation reconstruct` builds one through the points)");
+    require_mesh_output(output_, "the smooth surface");
     smooth_surface(context, mesh);
   }
 

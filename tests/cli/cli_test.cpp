@@ -296,6 +296,11 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --method voodoo").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --augment 0.5").exit_code, 1);
   EXPECT_EQ(scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --guide 2,0").exit_code, 1);
+  // A surface written as .xyz kept its points and dropped its triangles.
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "d.xyz"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("xyz would keep its points only"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.xyz"));
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --continue -5");  // no wrap to 2^64 − 5
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--continue: expected a whole number of 0 or more, got -5"));
