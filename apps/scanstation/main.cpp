@@ -62,7 +62,9 @@ int run(int argc, char** argv) {
     Report report(command->cli().get_name());
     ProgressReporter reporter(parse_progress_mode(quiet && progress == "auto" ? "none" : progress));
     const auto overwrite = command->force() ? io::Overwrite::replace : io::Overwrite::refuse;
-    if (!command->report_path().empty()) io::check_output_file(command->report_path(), overwrite);
+    // Not check_output_file: the report may go into the folder a scan, demo
+    // or replay is about to create (--report SESSION/report.json).
+    if (!command->report_path().empty()) io::check_writable(command->report_path(), overwrite);
     app::CommandContext context{reporter, report, overwrite, room_logger("scanstation")};
     command->run(context);
     reporter.finish();
