@@ -32,24 +32,34 @@ std::string frame_mismatch(const cv::Mat& frame, const PinholeCamera& camera) {
   return {};
 }
 
+// The frame at `path` when it can stand for `camera`'s, else empty with
+// `why` saying what is wrong: missing, unreadable, or a frame_mismatch.
+cv::Mat usable_frame(const fs::path& path, const PinholeCamera& camera, std::string& why) {
+  if (!fs::exists(path)) {
+    why = "missing";
+    return {};
+  }
+  cv::Mat frame = read_session_frame(path);
+  why = frame.empty() ? "unreadable" : frame_mismatch(frame, camera);
+  return why.empty() ? frame : cv::Mat();
+}
+
 // The frames of one step that can be used, with a problem noted for each
 // that cannot. No laser-off frame → no frames at all.
 std::optional<StepFrames> load_step(const SessionContents& session, const SessionStep& step,
                                     const std::vector<int>& lasers, std::vector<std::string>& problems) {
   StepFrames frames;
   frames.angle_deg = step.angle_deg;
-  const auto unusable = [&](const SessionFrame& f, const std::string& what, const std::string& consequence) {
-    problems.push_back((session.folder / f.file).string() + ": " + what + " (journal line " +
-                       std::to_string(step.journal_line) + "): " + consequence);
-  };
-  // The frame, or empty with `why` saying what is wrong with it.
-  const auto load = [&](const SessionFrame& f, std::string& why) {
+  // The frame, or empty with a problem noted saying what happens instead.
+  const auto load = [&](const SessionFrame& f, const std::string& consequence) {
     const fs::path path = session.folder / f.file;
-    cv::Mat frame = fs::exists(path) ? read_session_frame(path) : cv::Mat();
-    why = !fs::exists(path) ? "missing" : frame.empty() ? "unreadable" : frame_mismatch(frame, session.manifest.geometry.camera);
-    return why.empty() ? frame : cv::Mat();
+    std::string why;
+    cv::Mat frame = usable_frame(path, session.manifest.geometry.camera, why);
+    if (frame.empty())
+      problems.push_back(path.string() + ": " + why + " (journal line " + std::to_string(step.journal_line) +
+                         "): " + consequence);
+    return frame;
   };
-  std::string why;
   const auto off = std::find_if(step.frames.begin(), step.frames.end(), [](const SessionFrame& f) { return !f.laser; });
   const std::string step_name = "step " + std::to_string(step.step);
   if (off == step.frames.end()) {
@@ -57,19 +67,12 @@ std::optional<StepFrames> load_step(const SessionContents& session, const Sessio
                        " has no laser-off frame: step skipped");
     return std::nullopt;
   }
-  frames.off = load(*off, why);
-  if (frames.off.empty()) {
-    unusable(*off, why, step_name + " skipped");
-    return std::nullopt;
-  }
+  frames.off = load(*off, step_name + " skipped");
+  if (frames.off.empty()) return std::nullopt;
   for (const SessionFrame& f : step.frames) {
     if (!f.laser || std::find(lasers.begin(), lasers.end(), *f.laser) == lasers.end()) continue;
-    cv::Mat on = load(f, why);
-    if (on.empty()) {
-      unusable(f, why, step_name + " laser " + std::to_string(*f.laser) + " skipped");
-      continue;
-    }
-    frames.on.emplace_back(*f.laser, std::move(on));
+    cv::Mat on = load(f, step_name + " laser " + std::to_string(*f.laser) + " skipped");
+    if (!on.empty()) frames.on.emplace_back(*f.laser, std::move(on));
   }
   return frames;
 }
@@ -91,15 +94,11 @@ std::optional<StereoStepFrames> load_stereo_step(const SessionContents& session,
   const auto load = [&](int index, const std::string& consequence) {
     const SessionFrame& f = step.frames[static_cast<std::size_t>(index)];
     const fs::path path = session.folder / f.file;
-    cv::Mat frame = fs::exists(path) ? read_session_frame(path) : cv::Mat();
-    const std::string why =
-        !fs::exists(path) ? "missing"
-        : frame.empty()   ? "unreadable"
-                          : frame_mismatch(frame, f.camera == 0 || !geometry.right_camera ? geometry.camera
-                                                                                          : *geometry.right_camera);
-    if (why.empty()) return frame;
-    problems.push_back(path.string() + ": " + why + line + ": " + consequence);
-    return cv::Mat();
+    std::string why;
+    cv::Mat frame =
+        usable_frame(path, f.camera == 0 || !geometry.right_camera ? geometry.camera : *geometry.right_camera, why);
+    if (frame.empty()) problems.push_back(path.string() + ": " + why + line + ": " + consequence);
+    return frame;
   };
   StereoStepFrames frames;
   frames.angle_deg = step.angle_deg;

@@ -36,14 +36,8 @@ void require_mesh_output(const std::filesystem::path& output, const std::string&
 CLI::Validator finite_range(double low, double high) {
   return CLI::Validator(
       [low, high](const std::string& value) {
-        double x = 0;
-        std::size_t used = 0;
-        try {
-          x = std::stod(value, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != value.size() || !std::isfinite(x) || x < low || x > high)
+        const std::optional<double> x = parse_whole<double>(value);
+        if (!x || !std::isfinite(*x) || *x < low || *x > high)
           return fmt::format("expected a number in [{}, {}], got {}", low, high, value);
         return std::string();
       },

@@ -7,7 +7,9 @@
 #include "core/report.h"
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <spdlog/logger.h>
 #include <string>
@@ -43,6 +45,17 @@ class Command {
   std::string report_path_;
   bool force_ = false;
 };
+
+/// `text` read whole as a number of type T (std::from_chars: no leading
+/// '+' or blanks, nothing left over), or nullopt.
+template <typename T>
+std::optional<T> parse_whole(const std::string& text) {
+  T value{};
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  if (error != std::errc() || stop != end) return std::nullopt;
+  return value;
+}
 
 /// For options read into unsigned integers: refuses a minus sign, which
 /// CLI11 would wrap around (--seed -3 became 2^64 − 3).

@@ -57,15 +57,8 @@ namespace {
 CLI::Validator multiple_in(int low, int high, int factor, int offset, const std::string& what) {
   return CLI::Validator(
       [=](std::string& text) -> std::string {
-        int v = 0;
-        std::size_t used = 0;
-        try {
-          v = std::stoi(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != text.size() || v < low || v > high || (v - offset) % factor != 0)
-          return "expected " + what + ", got " + text;
+        const std::optional<int> v = parse_whole<int>(text);
+        if (!v || *v < low || *v > high || (*v - offset) % factor != 0) return "expected " + what + ", got " + text;
         return "";
       },
       what);

@@ -1,5 +1,6 @@
 // scanstation smooth IN -o OUT: a G¹ piecewise cubic Bézier boundary through
 // a closed polygon (thesis §9.2) or a closed triangle mesh (§9.4, §9.6, §9.8).
+#include "boundary_input.h"
 #include "command.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
@@ -79,31 +80,24 @@ class SmoothCommand final : public Command {
     io::check_output_file(output_, context.overwrite);
     if (patches_) io::check_output_file(*patches_, context.overwrite);
     if (zebra_) io::check_output_file(*zebra_, context.overwrite);
-    // Without --scheme the input decides, as in reconstruct: a polygon (svg,
-    // or 2D points in boundary order) gets the curve of §9.2.
-    const bool scheme_given = cli_->count("--scheme") > 0;
-    if (scheme_ == "curve" || (!scheme_given && io::resolve_format(input_, std::nullopt) == io::FileFormat::svg)) {
-      StageTimer read_timer(context.report, "read");
-      const Polygon2 polygon = io::read_polygon(input_);
-      read_timer.stop();
-      smooth_curve(context, polygon);
-      return;
-    }
+    // The input decides, as in reconstruct: a polygon (svg, or 2D points in
+    // boundary order) gets the curve of §9.2, a triangle mesh a split scheme.
     StageTimer read_timer(context.report, "read");
-    TriangleMesh mesh = io::read_mesh(input_, {std::nullopt, context.progress.stage("read")});
+    const BoundaryInput input = read_boundary(input_, std::nullopt, context.progress.stage("read"));
     context.progress.finish();
     read_timer.stop();
-    if (!scheme_given && mesh.vertices.dimension == 2 && mesh.face_count() == 0) {
-      Polygon2 polygon{mesh.vertices.positions.leftCols(2)};
-      drop_closing_repeat(polygon);
-      smooth_curve(context, polygon);
+    const bool scheme_given = cli_->count("--scheme") > 0;
+    if (input.polygon) {
+      if (scheme_given && scheme_ != "curve")
+        throw InvalidInput(input_.string() + ": a polygon; --scheme " + scheme_ + " smooths triangle meshes (use "
+                           "--scheme curve, or leave it out)");
+      smooth_curve(context, *input.polygon);
       return;
     }
-    if (mesh.face_count() == 0)
-      throw InvalidInput(input_.string() + ": points without triangles; smoothing needs a closed triangle mesh "
-                         "(`scanstation reconstruct` builds one through the points)");
+    if (scheme_ == "curve")
+      throw InvalidInput(input_.string() + ": a triangle mesh; --scheme curve smooths polygons");
     require_mesh_output(output_, "the smooth surface");
-    smooth_surface(context, mesh);
+    smooth_surface(context, *input.mesh);
   }
 
  private:
