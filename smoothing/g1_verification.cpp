@@ -1,5 +1,6 @@
 #include "smoothing/g1_verification.h"
 
+#include "smoothing/blockwise.h"
 #include "smoothing/patch_adjacency.h"
 
 #include <Eigen/Geometry>
@@ -68,36 +69,52 @@ G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge) {
     if (a == b) return std::binary_search(near_dependent.begin(), near_dependent.end(), a);
     return std::binary_search(dependent.begin(), dependent.end(), std::array<int, 2>{std::min(a, b), std::max(a, b)});
   };
-  // The largest angles are kept as tangents too, so that the common case
-  // (an angle at rounding level, below the largest so far) needs no atan2.
-  double max_angle[2] = {0.0, 0.0}, max_tangent[2] = {0.0, 0.0}, max_squared_residual = 0.0;
-  for (const PatchEdgePair& pair : adjacency.pairs) {
-    const int kind = approximate(pair) ? 1 : 0;  // 0: joined exactly
-    const EdgeDerivatives P(surface.patches[pair.patch_a], pair.edge_a);
-    const EdgeDerivatives Q(surface.patches[pair.patch_b], pair.edge_b);
-    for (int i = 0; i <= n; ++i) {
-      const double s = double(i) / n;
-      const Eigen::Vector3d dP = quadratic(P.along, s), cP = quadratic(P.across, s);
-      const Eigen::Vector3d dQ = quadratic(Q.along, 1.0 - s), cQ = quadratic(Q.across, 1.0 - s);
-      const Eigen::Vector3d nP = dP.cross(cP), nQ = dQ.cross(cQ);
-      // |[∇_d P, ∇_c P, ∇_c Q]| / (|∇_d P| |∇_c P| |∇_c Q|), squared.
-      const double scale = dP.squaredNorm() * cP.squaredNorm() * cQ.squaredNorm();
-      if (scale > 0.0) max_squared_residual = std::max(max_squared_residual, nP.dot(cQ) * nP.dot(cQ) / scale);
-      ++result.samples;
-      // A vanishing normal is a singular point: no tangent plane, not G¹.
-      if (nP.squaredNorm() == 0.0 || nQ.squaredNorm() == 0.0) {
-        max_angle[kind] = M_PI;
-        max_tangent[kind] = INFINITY;
-        continue;
-      }
-      const double sine = nP.cross(nQ).norm(), cosine = nP.dot(nQ);
-      if (cosine > 0.0 && sine <= cosine * max_tangent[kind]) continue;
-      const double angle = std::atan2(sine, cosine);
-      if (angle > max_angle[kind]) {
-        max_angle[kind] = angle;
-        max_tangent[kind] = angle < M_PI / 2 ? std::tan(angle) : INFINITY;
+  // Blocks of shared edges on all cores; only maxima and counts are
+  // combined, so the answer does not depend on the split. Each block keeps
+  // its largest angles as tangents too, so that the common case (an angle at
+  // rounding level, below the largest so far) needs no atan2.
+  constexpr std::size_t kBlock = 4096;
+  struct Partial {
+    double max_angle[2] = {0.0, 0.0}, max_tangent[2] = {0.0, 0.0}, max_squared_residual = 0.0;
+    std::size_t samples = 0;
+  };
+  const auto visit = [&](std::size_t begin, std::size_t end, Partial& part) {
+    for (std::size_t e = begin; e < end; ++e) {
+      const PatchEdgePair& pair = adjacency.pairs[e];
+      const int kind = approximate(pair) ? 1 : 0;  // 0: joined exactly
+      const EdgeDerivatives P(surface.patches[pair.patch_a], pair.edge_a);
+      const EdgeDerivatives Q(surface.patches[pair.patch_b], pair.edge_b);
+      for (int i = 0; i <= n; ++i) {
+        const double s = double(i) / n;
+        const Eigen::Vector3d dP = quadratic(P.along, s), cP = quadratic(P.across, s);
+        const Eigen::Vector3d dQ = quadratic(Q.along, 1.0 - s), cQ = quadratic(Q.across, 1.0 - s);
+        const Eigen::Vector3d nP = dP.cross(cP), nQ = dQ.cross(cQ);
+        // |[∇_d P, ∇_c P, ∇_c Q]| / (|∇_d P| |∇_c P| |∇_c Q|), squared.
+        const double scale = dP.squaredNorm() * cP.squaredNorm() * cQ.squaredNorm();
+        if (scale > 0.0) part.max_squared_residual = std::max(part.max_squared_residual, nP.dot(cQ) * nP.dot(cQ) / scale);
+        ++part.samples;
+        // A vanishing normal is a singular point: no tangent plane, not G¹.
+        if (nP.squaredNorm() == 0.0 || nQ.squaredNorm() == 0.0) {
+          part.max_angle[kind] = M_PI;
+          part.max_tangent[kind] = INFINITY;
+          continue;
+        }
+        const double sine = nP.cross(nQ).norm(), cosine = nP.dot(nQ);
+        if (cosine > 0.0 && sine <= cosine * part.max_tangent[kind]) continue;
+        const double angle = std::atan2(sine, cosine);
+        if (angle > part.max_angle[kind]) {
+          part.max_angle[kind] = angle;
+          part.max_tangent[kind] = angle < M_PI / 2 ? std::tan(angle) : INFINITY;
+        }
       }
     }
+  };
+  const auto partial = blockwise<Partial>(adjacency.pairs.size(), kBlock, visit);
+  double max_angle[2] = {0.0, 0.0}, max_squared_residual = 0.0;
+  for (const Partial& part : partial) {
+    for (int kind = 0; kind < 2; ++kind) max_angle[kind] = std::max(max_angle[kind], part.max_angle[kind]);
+    max_squared_residual = std::max(max_squared_residual, part.max_squared_residual);
+    result.samples += part.samples;
   }
   result.max_normal_angle = std::max(max_angle[0], max_angle[1]);
   result.max_normal_angle_exact = max_angle[0];

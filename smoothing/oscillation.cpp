@@ -1,5 +1,7 @@
 #include "smoothing/oscillation.h"
 
+#include "smoothing/blockwise.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -53,20 +55,34 @@ Oscillation oscillation(const BezierSurface& surface, const Eigen::MatrixX3d& V,
           row[control_index(a, b, c)] = multinomial * std::pow(u, a) * std::pow(v, b) * std::pow(w, c);
         }
     }
-  for (std::size_t p = 0; p < surface.patches.size(); ++p) {
-    const int f = surface.macro[p];
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const double edge_length = ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
-    if (!(edge_length > 0.0)) continue;
-    const CubicTriangle& patch = surface.patches[p];
-    for (const std::array<double, 10>& row : weights) {
-      Eigen::Vector3d x = row[0] * patch[0];
-      for (int k = 1; k < 10; ++k) x += row[k] * patch[k];
-      const double relative = (x - closest_on_triangle(x, a, b, c)).norm() / edge_length;
-      result.max_relative = std::max(result.max_relative, relative);
-      result.mean_relative += relative;
-      ++count;
+  // Blocks of patches on all cores: the same mean for any number of threads.
+  constexpr std::size_t kBlock = 4096;
+  struct Partial {
+    double max = 0.0, sum = 0.0;
+    std::size_t count = 0;
+  };
+  const auto visit = [&](std::size_t begin, std::size_t end, Partial& part) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const int f = surface.macro[p];
+      const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+      const double edge_length = ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
+      if (!(edge_length > 0.0)) continue;
+      const CubicTriangle& patch = surface.patches[p];
+      for (const std::array<double, 10>& row : weights) {
+        Eigen::Vector3d x = row[0] * patch[0];
+        for (int k = 1; k < 10; ++k) x += row[k] * patch[k];
+        const double relative = (x - closest_on_triangle(x, a, b, c)).norm() / edge_length;
+        part.max = std::max(part.max, relative);
+        part.sum += relative;
+        ++part.count;
+      }
     }
+  };
+  const auto partial = blockwise<Partial>(surface.patches.size(), kBlock, visit);
+  for (const Partial& part : partial) {
+    result.max_relative = std::max(result.max_relative, part.max);
+    result.mean_relative += part.sum;
+    count += part.count;
   }
   if (count > 0) result.mean_relative /= double(count);
   return result;
