@@ -1,0 +1,103 @@
+// The exact tests of the surface under edit (reconstruct/boundary_surface.h)
+// against exhaustive references: its grid and floating-point plane filters
+// may only skip work, never a meeting or a point.
+#include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/boundary_surface.h"
+#include "sim/random.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace scanstation {
+namespace {
+
+// A closed surface through points of a sphere and through a flat grid of
+// exactly coplanar points inside it (a crater with a flat floor), so that
+// candidate triangles are often coplanar with surface faces or share their
+// corners.
+Eigen::MatrixX3d sphere_with_flat_floor(sim::Random& random) {
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 250; ++i) {
+    Eigen::Vector3d p(random.normal(), random.normal(), random.normal());
+    points.push_back(p.normalized());
+  }
+  for (int x = -5; x <= 5; ++x)
+    for (int y = -5; y <= 5; ++y)
+      if (x * x + y * y <= 25) points.emplace_back(x / 16.0, y / 16.0, 0.875);
+  Eigen::MatrixX3d P(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  return P;
+}
+
+TEST(BoundarySurface, MeetsSurfaceAgreesWithEveryFaceTestedExactly) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    sim::Random random(seed);
+    const Eigen::MatrixX3d P = sphere_with_flat_floor(random);
+    const SurfaceReconstruction r = reconstruct_surface(P);
+    ASSERT_GT(r.mesh.faces.rows(), 0);
+    const Eigen::MatrixX3d& V = r.mesh.vertices.positions;
+    const BoundarySurface surface(V, r.mesh.faces);
+    const auto n = static_cast<std::uint64_t>(V.rows());
+    // Candidates from any three points, and from three points of the flat
+    // floor (the last rows), coplanar with the floor's faces.
+    const auto floor_start = static_cast<std::uint64_t>(250);
+    int meeting = 0, apart = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+      std::vector<BoundarySurface::Triangle> fresh;
+      for (int k = 0; k < 1 + trial % 2; ++k) {
+        const bool flat = trial % 3 == 0;
+        const auto pick = [&] {
+          return static_cast<int>(flat ? floor_start + random.below(n - floor_start) : random.below(n));
+        };
+        BoundarySurface::Triangle t{pick(), pick(), pick()};
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+        fresh.push_back(t);
+      }
+      if (fresh.empty()) continue;
+      bool expected = false;
+      for (std::size_t g = 0; g < surface.face_slots() && !expected; ++g)
+        for (const auto& t : fresh)
+          if (surface.alive(static_cast<int>(g)) && surface.improper(t, surface.face(static_cast<int>(g)))) expected = true;
+      ASSERT_EQ(surface.meets_surface(fresh, {}), expected) << "seed " << seed << ", trial " << trial;
+      (expected ? meeting : apart) += 1;
+    }
+    // Both answers occur often enough for the comparison to mean something.
+    EXPECT_GT(meeting, 100) << seed;
+    EXPECT_GT(apart, 100) << seed;
+  }
+}
+
+TEST(BoundarySurface, PointInTetrahedronAgreesWithEveryPointTestedExactly) {
+  sim::Random random(4);
+  const Eigen::MatrixX3d P = sphere_with_flat_floor(random);
+  const SurfaceReconstruction r = reconstruct_surface(P);
+  const Eigen::MatrixX3d& V = r.mesh.vertices.positions;
+  const BoundarySurface surface(V, r.mesh.faces);
+  const auto n = static_cast<std::uint64_t>(V.rows());
+  int holding = 0, empty = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int a = static_cast<int>(random.below(n)), b = static_cast<int>(random.below(n)),
+              c = static_cast<int>(random.below(n)), d = static_cast<int>(random.below(n));
+    const CGAL::Orientation o = CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), surface.exact(d));
+    if (o == CGAL::COPLANAR) continue;  // flat (or repeated corners): not asked
+    bool expected = false;
+    for (int q = 0; q < static_cast<int>(n) && !expected; ++q) {
+      if (q == a || q == b || q == c || q == d) continue;
+      const auto& Q = surface.exact(q);
+      // In the closed tetrahedron: on no face's far side.
+      expected = CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), Q) != -o &&
+                 CGAL::orientation(surface.exact(a), surface.exact(b), Q, surface.exact(d)) != -o &&
+                 CGAL::orientation(surface.exact(a), Q, surface.exact(c), surface.exact(d)) != -o &&
+                 CGAL::orientation(Q, surface.exact(b), surface.exact(c), surface.exact(d)) != -o;
+    }
+    ASSERT_EQ(surface.point_in_tetrahedron(a, b, c, d), expected) << "trial " << trial;
+    (expected ? holding : empty) += 1;
+  }
+  EXPECT_GT(holding, 100);
+  EXPECT_GT(empty, 100);
+}
+
+}  // namespace
+}  // namespace scanstation
