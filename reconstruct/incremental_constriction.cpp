@@ -561,7 +561,8 @@ struct IncrementalConstriction::State {
     }
     if (lines.empty()) return constriction;
     ConstrictionOptions options = constriction;
-    options.carve_first = line_of_sight_depths(L.dt, L.dt.points, lines);
+    options.carve_first =
+        line_of_sight_depths(L.dt, L.dt.points, lines, static_cast<Eigen::Index>(L.core_vertices));
     for (std::size_t i = L.region; i < L.cells.size(); ++i) options.carve_first[i] = -1;  // frozen or outside already
     for (std::size_t i = 0; i < L.region; ++i) stats.sight_line_cells += options.carve_first[i] >= 0;
     return options;

@@ -10,8 +10,8 @@ namespace {
 
 class SightWalk {
  public:
-  SightWalk(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points)
-      : dt_(dt), points_(points), cell_of_(static_cast<std::size_t>(points.rows()), -1) {
+  SightWalk(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points, Eigen::Index whole_stars)
+      : dt_(dt), points_(points), whole_stars_(whole_stars), cell_of_(static_cast<std::size_t>(points.rows()), -1) {
     for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
       for (int i = 0; i < 4; ++i) cell_of_[static_cast<std::size_t>(dt.cells(c, i))] = static_cast<int>(c);
   }
@@ -69,9 +69,40 @@ class SightWalk {
 
   // The cell around the point whose cone at it holds the direction towards
   // q: q on the inner side (or the plane) of the three faces through it.
+  // Found by walking from cone to cone across a face through the point that
+  // has q beyond it. Where such a face is a convex hull face (no neighbour,
+  // the point's star whole), q lies outside the hull's cone at the point,
+  // which the cones of its cells fill: no cell holds the direction. Only a
+  // walk that cannot go on (a star cut off at the edge of a part of a
+  // triangulation, or a cycle) searches the whole star. The search alone
+  // took about 44 orientation tests per line on a dense scan (some 25 cells
+  // around a point), ten times the walk along the line after it.
   int entry_cell(int point, const Eigen::Vector3d& q) {
     const int first = cell_of_[static_cast<std::size_t>(point)];
     if (first < 0) return -1;
+    const bool whole = point < whole_stars_;
+    for (int c = first, previous = -1, steps = 0; steps < kWalkSteps; ++steps) {
+      int next = -1;
+      bool inside = true;
+      for (int j = 0; j < 4 && next < 0; ++j) {
+        if (dt_.cells(c, j) == point || side(c, j, q) >= 0) continue;
+        inside = false;
+        const int n = dt_.neighbors(c, j);
+        if (n < 0 && whole) return -1;
+        if (n >= 0 && n != previous) next = n;
+      }
+      if (inside) return c;
+      if (next < 0) break;
+      previous = c;
+      c = next;
+    }
+    return search_star(point, q);
+  }
+  static constexpr int kWalkSteps = 64;
+
+  // The same by trying every cell around the point, nearest first.
+  int search_star(int point, const Eigen::Vector3d& q) {
+    const int first = cell_of_[static_cast<std::size_t>(point)];
     star_.clear();
     star_.push_back(first);
     for (std::size_t n = 0; n < star_.size(); ++n) {
@@ -90,6 +121,7 @@ class SightWalk {
 
   const DelaunayComplex<3>& dt_;
   const Eigen::MatrixX3d& points_;
+  Eigen::Index whole_stars_;
   std::vector<int> cell_of_;
   std::vector<int> star_, path_;
 };
@@ -97,9 +129,9 @@ class SightWalk {
 }  // namespace
 
 std::vector<int> line_of_sight_depths(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points,
-                                      const std::vector<SightLine>& lines) {
+                                      const std::vector<SightLine>& lines, Eigen::Index whole_stars) {
   std::vector<int> depth(static_cast<std::size_t>(dt.cells.rows()), -1);
-  SightWalk walk(dt, points);
+  SightWalk walk(dt, points, whole_stars);
   for (const SightLine& line : lines) walk.walk(line, depth);
   return depth;
 }

@@ -9,6 +9,7 @@
 #include "reconstruct/delaunay_complex.h"
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 namespace scanstation {
@@ -32,7 +33,13 @@ struct SightLine {
 ///         exact orientation tests (a segment grazing an edge or a vertex
 ///         continues into one of the cells there). Lines with a non-finite
 ///         viewpoint or a point in no cell are skipped.
+/// whole_stars  the points [0, whole_stars) have every finite cell around
+///         them in dt (all of them for a whole triangulation; a part of one
+///         may hold the rest): a face through such a point with no
+///         neighbour is a convex hull face, and a viewpoint beyond it is
+///         seen from outside the hull at once, without searching the star.
 std::vector<int> line_of_sight_depths(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points,
-                                      const std::vector<SightLine>& lines);
+                                      const std::vector<SightLine>& lines,
+                                      Eigen::Index whole_stars = std::numeric_limits<Eigen::Index>::max());
 
 }  // namespace scanstation

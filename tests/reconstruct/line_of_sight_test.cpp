@@ -56,6 +56,64 @@ TEST(LineOfSight, WalkFindsExactlyTheCellsASegmentCrosses) {
   }
 }
 
+// A part of a triangulation (the incremental constriction's local
+// complexes): the cells around a few centre points, the centres numbered
+// first. Lines followed within the part end where they leave it. Declaring
+// the centres' stars whole (a face through a centre with no neighbour is a
+// hull face) only saves searching their stars: the depths are those found
+// when no star is taken as whole. Viewpoints outside the hull and inside
+// it; every point of the part gets a line.
+TEST(LineOfSight, WholeStarsOfAPartGiveTheSameDepths) {
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    sim::Random random(seed + 100);
+    Eigen::MatrixX3d P(80, 3);
+    for (Eigen::Index i = 0; i < P.rows(); ++i) P.row(i) << random.uniform(), random.uniform(), random.uniform();
+    const DelaunayComplex<3> dt = delaunay_complex(P);
+    std::vector<int> local(static_cast<std::size_t>(P.rows()), -1), global;
+    for (int v = 0; v < 80; v += 9) {
+      local[static_cast<std::size_t>(v)] = static_cast<int>(global.size());
+      global.push_back(v);
+    }
+    const auto centres = static_cast<Eigen::Index>(global.size());
+    std::vector<Eigen::Index> cells;
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
+      bool around = false;
+      for (int k = 0; k < 4; ++k) around = around || (dt.cells(c, k) % 9 == 0);
+      if (around) cells.push_back(c);
+    }
+    std::vector<int> part_of(static_cast<std::size_t>(dt.cells.rows()), -1);
+    for (std::size_t i = 0; i < cells.size(); ++i) part_of[static_cast<std::size_t>(cells[i])] = static_cast<int>(i);
+    DelaunayComplex<3> part;
+    part.cells.resize(static_cast<Eigen::Index>(cells.size()), 4);
+    part.neighbors.resize(static_cast<Eigen::Index>(cells.size()), 4);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      for (int k = 0; k < 4; ++k) {
+        int& v = local[static_cast<std::size_t>(dt.cells(cells[i], k))];
+        if (v < 0) {
+          v = static_cast<int>(global.size());
+          global.push_back(dt.cells(cells[i], k));
+        }
+        part.cells(static_cast<Eigen::Index>(i), k) = v;
+        const int n = dt.neighbors(cells[i], k);
+        part.neighbors(static_cast<Eigen::Index>(i), k) = n < 0 ? -1 : part_of[static_cast<std::size_t>(n)];
+      }
+    part.points.resize(static_cast<Eigen::Index>(global.size()), 3);
+    for (std::size_t k = 0; k < global.size(); ++k) part.points.row(static_cast<Eigen::Index>(k)) = P.row(global[k]);
+    std::vector<SightLine> lines;
+    for (std::size_t k = 0; k < global.size(); ++k)
+      for (int view = 0; view < 4; ++view)
+        lines.push_back({static_cast<int>(k), Eigen::Vector3d(4.0 * random.uniform() - 1.5, 4.0 * random.uniform() - 1.5,
+                                                              4.0 * random.uniform() - 1.5)});
+    int crossed = 0;
+    for (const SightLine& line : lines) {
+      const std::vector<int> searched = line_of_sight_depths(part, part.points, {line}, 0);
+      EXPECT_EQ(line_of_sight_depths(part, part.points, {line}, centres), searched) << "seed " << seed;
+      crossed += std::count_if(searched.begin(), searched.end(), [](int d) { return d >= 0; }) > 0;
+    }
+    EXPECT_GT(crossed, static_cast<int>(lines.size()) / 4) << "seed " << seed;
+  }
+}
+
 TEST(LineOfSight, SkipsLinesWithoutAViewpoint) {
   Eigen::MatrixX3d P(5, 3);
   P << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1;
