@@ -3,6 +3,7 @@
 #include "core/predicates.h"
 
 #include <algorithm>
+#include <array>
 
 namespace scanstation {
 
@@ -23,20 +24,26 @@ class SightWalk {
     path_.clear();
     // A straight segment crosses each cell once; the bound only guards
     // against a cycle of grazing choices.
-    for (Eigen::Index steps = 0; cell >= 0 && steps < dt_.cells.rows(); ++steps) {
+    for (int steps = 0, entry = -1; cell >= 0 && steps < dt_.cells.rows(); ++steps) {
       path_.push_back(cell);
+      const Corners v = corners(cell);
       int exit = -1, beyond = -1;
       for (int k = 0; k < 4; ++k) {
-        if (side(cell, k, q) >= 0) continue;  // q is not past face k (nor past a face through p: the entry cone)
+        if (k == entry || side(v, k, q) >= 0) continue;  // q is not past face k (nor past a face through p: the entry cone)
         if (beyond < 0) beyond = k;
-        if (crosses_face(p, q, cell, k)) {
+        if (crosses_face(p, q, v, k)) {
           exit = k;
           break;
         }
       }
       if (exit < 0) exit = beyond;
       if (exit < 0) break;  // q lies in this cell
-      cell = dt_.neighbors(cell, exit);
+      const int next = dt_.neighbors(cell, exit);
+      if (next >= 0) {
+        entry = 0;
+        while (dt_.neighbors(next, entry) != cell) ++entry;
+      }
+      cell = next;
     }
     for (std::size_t k = 0; k < path_.size(); ++k) {
       int& d = depth[static_cast<std::size_t>(path_[k])];
@@ -51,18 +58,22 @@ class SightWalk {
   // Orientation of the cell with its vertex k replaced by x: > 0 when x is on
   // the same side of the face opposite k as that vertex (cells are
   // positively oriented).
-  int side(int cell, int k, const Eigen::Vector3d& x) const {
-    Eigen::Vector3d v[4] = {corner(cell, 0), corner(cell, 1), corner(cell, 2), corner(cell, 3)};
-    v[k] = x;
+  // A cell's corners are read once per cell and shared by its tests.
+  using Corners = std::array<Eigen::Vector3d, 4>;
+  Corners corners(int cell) const { return {corner(cell, 0), corner(cell, 1), corner(cell, 2), corner(cell, 3)}; }
+  static int side(Corners v, int k, const Eigen::Vector3d& x) {
+    v[static_cast<std::size_t>(k)] = x;
     return orientation(v[0], v[1], v[2], v[3]);
   }
+  int side(int cell, int k, const Eigen::Vector3d& x) const { return side(corners(cell), k, x); }
 
-  // Whether the line through p and q meets the face of `cell` opposite k
-  // (its interior or boundary): the three edge orientations agree.
-  bool crosses_face(const Eigen::Vector3d& p, const Eigen::Vector3d& q, int cell, int k) const {
+  // Whether the line through p and q meets the face opposite k of the cell
+  // with corners v (its interior or boundary): the three edge orientations
+  // agree.
+  static bool crosses_face(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Corners& v, int k) {
     Eigen::Vector3d f[3];
     for (int j = 0, m = 0; j < 4; ++j)
-      if (j != k) f[m++] = corner(cell, j);
+      if (j != k) f[m++] = v[static_cast<std::size_t>(j)];
     const int s0 = orientation(p, q, f[0], f[1]), s1 = orientation(p, q, f[1], f[2]), s2 = orientation(p, q, f[2], f[0]);
     return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
   }
