@@ -23,7 +23,9 @@ class SightWalk {
     int cell = entry_cell(line.point, q);
     path_.clear();
     // A straight segment crosses each cell once; the bound only guards
-    // against a cycle of grazing choices.
+    // against a cycle of grazing choices. `entry`: the face the walk came in
+    // through (q was strictly beyond it in the cell before, so it is
+    // strictly on its inner side here, and no way out).
     for (int steps = 0, entry = -1; cell >= 0 && steps < dt_.cells.rows(); ++steps) {
       path_.push_back(cell);
       const Corners v = corners(cell);
@@ -55,12 +57,13 @@ class SightWalk {
  private:
   Eigen::Vector3d corner(int cell, int k) const { return points_.row(dt_.cells(cell, k)).transpose(); }
 
+  // A cell's corners, read once per cell and shared by its tests.
+  using Corners = std::array<Eigen::Vector3d, 4>;
+  Corners corners(int cell) const { return {corner(cell, 0), corner(cell, 1), corner(cell, 2), corner(cell, 3)}; }
+
   // Orientation of the cell with its vertex k replaced by x: > 0 when x is on
   // the same side of the face opposite k as that vertex (cells are
   // positively oriented).
-  // A cell's corners are read once per cell and shared by its tests.
-  using Corners = std::array<Eigen::Vector3d, 4>;
-  Corners corners(int cell) const { return {corner(cell, 0), corner(cell, 1), corner(cell, 2), corner(cell, 3)}; }
   static int side(Corners v, int k, const Eigen::Vector3d& x) {
     v[static_cast<std::size_t>(k)] = x;
     return orientation(v[0], v[1], v[2], v[3]);
