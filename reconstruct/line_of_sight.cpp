@@ -1,6 +1,6 @@
 #include "reconstruct/line_of_sight.h"
 
-#include "core/predicates.h"
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <array>
@@ -10,16 +10,24 @@ namespace scanstation {
 namespace {
 
 class SightWalk {
+  using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+
  public:
   SightWalk(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points, Eigen::Index whole_stars)
-      : dt_(dt), points_(points), whole_stars_(whole_stars), cell_of_(static_cast<std::size_t>(points.rows()), -1) {
+      : dt_(dt), whole_stars_(whole_stars), cell_of_(static_cast<std::size_t>(points.rows()), -1) {
+    // Each point's coordinates together, as the predicates take them: a
+    // walk reads four corners a cell, and a row of the column-major input
+    // is three scattered loads.
+    points_.reserve(static_cast<std::size_t>(points.rows()));
+    for (Eigen::Index i = 0; i < points.rows(); ++i) points_.emplace_back(points(i, 0), points(i, 1), points(i, 2));
     for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
       for (int i = 0; i < 4; ++i) cell_of_[static_cast<std::size_t>(dt.cells(c, i))] = static_cast<int>(c);
   }
 
   void walk(const SightLine& line, std::vector<int>& depth) {
-    if (line.point < 0 || line.point >= points_.rows() || !line.viewpoint.allFinite()) return;
-    const Eigen::Vector3d p = points_.row(line.point).transpose(), &q = line.viewpoint;
+    if (line.point < 0 || static_cast<std::size_t>(line.point) >= points_.size() || !line.viewpoint.allFinite()) return;
+    const Point& p = points_[static_cast<std::size_t>(line.point)];
+    const Point q(line.viewpoint.x(), line.viewpoint.y(), line.viewpoint.z());
     int cell = entry_cell(line.point, q);
     path_.clear();
     // A straight segment crosses each cell once; the bound only guards
@@ -55,29 +63,30 @@ class SightWalk {
   }
 
  private:
-  Eigen::Vector3d corner(int cell, int k) const { return points_.row(dt_.cells(cell, k)).transpose(); }
+  const Point& corner(int cell, int k) const { return points_[static_cast<std::size_t>(dt_.cells(cell, k))]; }
 
   // A cell's corners, read once per cell and shared by its tests.
-  using Corners = std::array<Eigen::Vector3d, 4>;
+  using Corners = std::array<Point, 4>;
   Corners corners(int cell) const { return {corner(cell, 0), corner(cell, 1), corner(cell, 2), corner(cell, 3)}; }
 
   // Orientation of the cell with its vertex k replaced by x: > 0 when x is on
   // the same side of the face opposite k as that vertex (cells are
   // positively oriented).
-  static int side(Corners v, int k, const Eigen::Vector3d& x) {
+  static int side(Corners v, int k, const Point& x) {
     v[static_cast<std::size_t>(k)] = x;
-    return orientation(v[0], v[1], v[2], v[3]);
+    return static_cast<int>(CGAL::orientation(v[0], v[1], v[2], v[3]));
   }
-  int side(int cell, int k, const Eigen::Vector3d& x) const { return side(corners(cell), k, x); }
+  int side(int cell, int k, const Point& x) const { return side(corners(cell), k, x); }
 
   // Whether the line through p and q meets the face opposite k of the cell
   // with corners v (its interior or boundary): the three edge orientations
   // agree.
-  static bool crosses_face(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Corners& v, int k) {
-    Eigen::Vector3d f[3];
+  static bool crosses_face(const Point& p, const Point& q, const Corners& v, int k) {
+    const Point* f[3];
     for (int j = 0, m = 0; j < 4; ++j)
-      if (j != k) f[m++] = v[static_cast<std::size_t>(j)];
-    const int s0 = orientation(p, q, f[0], f[1]), s1 = orientation(p, q, f[1], f[2]), s2 = orientation(p, q, f[2], f[0]);
+      if (j != k) f[m++] = &v[static_cast<std::size_t>(j)];
+    const int s0 = CGAL::orientation(p, q, *f[0], *f[1]), s1 = CGAL::orientation(p, q, *f[1], *f[2]),
+              s2 = CGAL::orientation(p, q, *f[2], *f[0]);
     return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
   }
 
@@ -91,7 +100,7 @@ class SightWalk {
   // triangulation, or a cycle) searches the whole star. The search alone
   // took about 44 orientation tests per line on a dense scan (some 25 cells
   // around a point), ten times the walk along the line after it.
-  int entry_cell(int point, const Eigen::Vector3d& q) {
+  int entry_cell(int point, const Point& q) {
     const int first = cell_of_[static_cast<std::size_t>(point)];
     if (first < 0) return -1;
     const bool whole = point < whole_stars_;
@@ -115,7 +124,7 @@ class SightWalk {
   static constexpr int kWalkSteps = 64;
 
   // The same by trying every cell around the point, nearest first.
-  int search_star(int point, const Eigen::Vector3d& q) {
+  int search_star(int point, const Point& q) {
     const int first = cell_of_[static_cast<std::size_t>(point)];
     star_.clear();
     star_.push_back(first);
@@ -134,7 +143,7 @@ class SightWalk {
   }
 
   const DelaunayComplex<3>& dt_;
-  const Eigen::MatrixX3d& points_;
+  std::vector<Point> points_;
   Eigen::Index whole_stars_;
   std::vector<int> cell_of_;
   std::vector<int> star_, path_;
