@@ -1,6 +1,9 @@
 #include "reconstruct/line_of_sight.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -9,20 +12,36 @@ namespace scanstation {
 
 namespace {
 
-class SightWalk {
-  using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
 
- public:
-  SightWalk(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points, Eigen::Index whole_stars)
-      : dt_(dt), whole_stars_(whole_stars), cell_of_(static_cast<std::size_t>(points.rows()), -1) {
-    // Each point's coordinates together, as the predicates take them: a
-    // walk reads four corners a cell, and a row of the column-major input
-    // is three scattered loads.
-    points_.reserve(static_cast<std::size_t>(points.rows()));
-    for (Eigen::Index i = 0; i < points.rows(); ++i) points_.emplace_back(points(i, 0), points(i, 1), points(i, 2));
+// What every walk reads: the complex, its points as the predicates take
+// them (each point's coordinates together: a walk reads four corners a
+// cell, and a row of the column-major input is three scattered loads), and
+// a cell at each point.
+struct SightData {
+  SightData(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& P, Eigen::Index whole_stars)
+      : dt(dt), whole_stars(whole_stars), cell_of(static_cast<std::size_t>(P.rows()), -1) {
+    points.reserve(static_cast<std::size_t>(P.rows()));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
     for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
-      for (int i = 0; i < 4; ++i) cell_of_[static_cast<std::size_t>(dt.cells(c, i))] = static_cast<int>(c);
+      for (int i = 0; i < 4; ++i) cell_of[static_cast<std::size_t>(dt.cells(c, i))] = static_cast<int>(c);
   }
+  const DelaunayComplex<3>& dt;
+  std::vector<Point> points;
+  Eigen::Index whole_stars;
+  std::vector<int> cell_of;
+};
+
+// A depth (−1: no line crossed the cell yet) lowered to d.
+void keep_least(int& depth, int d) {
+  if (depth < 0 || d < depth) depth = d;
+}
+
+// One thread's walks, with its own scratch.
+class SightWalk {
+ public:
+  explicit SightWalk(const SightData& data)
+      : dt_(data.dt), points_(data.points), whole_stars_(data.whole_stars), cell_of_(data.cell_of) {}
 
   void walk(const SightLine& line, std::vector<int>& depth) {
     if (line.point < 0 || static_cast<std::size_t>(line.point) >= points_.size() || !line.viewpoint.allFinite()) return;
@@ -55,11 +74,8 @@ class SightWalk {
       }
       cell = next;
     }
-    for (std::size_t k = 0; k < path_.size(); ++k) {
-      int& d = depth[static_cast<std::size_t>(path_[k])];
-      const int here = static_cast<int>(path_.size() - 1 - k);
-      if (d < 0 || here < d) d = here;
-    }
+    for (std::size_t k = 0; k < path_.size(); ++k)
+      keep_least(depth[static_cast<std::size_t>(path_[k])], static_cast<int>(path_.size() - 1 - k));
   }
 
  private:
@@ -143,9 +159,9 @@ class SightWalk {
   }
 
   const DelaunayComplex<3>& dt_;
-  std::vector<Point> points_;
+  const std::vector<Point>& points_;
   Eigen::Index whole_stars_;
-  std::vector<int> cell_of_;
+  const std::vector<int>& cell_of_;
   std::vector<int> star_, path_;
 };
 
@@ -154,8 +170,30 @@ class SightWalk {
 std::vector<int> line_of_sight_depths(const DelaunayComplex<3>& dt, const Eigen::MatrixX3d& points,
                                       const std::vector<SightLine>& lines, Eigen::Index whole_stars) {
   std::vector<int> depth(static_cast<std::size_t>(dt.cells.rows()), -1);
-  SightWalk walk(dt, points, whole_stars);
-  for (const SightLine& line : lines) walk.walk(line, depth);
+  const SightData data(dt, points, whole_stars);
+  // A cell's depth is the least over the lines that cross it, whichever
+  // walks them: the lines go to both cores in blocks, each thread keeps its
+  // own depths, and those are merged by the same least.
+  constexpr std::size_t kBlock = 256;
+  if (lines.size() < 8 * kBlock) {
+    SightWalk walk(data);
+    for (const SightLine& line : lines) walk.walk(line, depth);
+    return depth;
+  }
+  struct Local {
+    explicit Local(const SightData& data) : walk(data), depth(static_cast<std::size_t>(data.dt.cells.rows()), -1) {}
+    SightWalk walk;
+    std::vector<int> depth;
+  };
+  tbb::enumerable_thread_specific<Local> local([&] { return Local(data); });
+  const auto walk_block = [&](const tbb::blocked_range<std::size_t>& r) {
+    Local& mine = local.local();
+    for (std::size_t i = r.begin(); i < r.end(); ++i) mine.walk.walk(lines[i], mine.depth);
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), kBlock), walk_block);
+  for (const Local& mine : local)
+    for (std::size_t c = 0; c < depth.size(); ++c)
+      if (mine.depth[c] >= 0) keep_least(depth[c], mine.depth[c]);
   return depth;
 }
 

@@ -114,6 +114,27 @@ TEST(LineOfSight, WholeStarsOfAPartGiveTheSameDepths) {
   }
 }
 
+// Many lines are walked on all cores, each thread keeping its own depths:
+// the merged depths are those of the lines walked one by one.
+TEST(LineOfSight, ManyLinesOnAllCoresGiveTheDepthsOfTheLinesOneByOne) {
+  sim::Random random(77);
+  Eigen::MatrixX3d P(300, 3);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) P.row(i) << random.uniform(), random.uniform(), random.uniform();
+  const DelaunayComplex<3> dt = delaunay_complex(P);
+  std::vector<SightLine> lines;
+  for (int k = 0; k < 5000; ++k)
+    lines.push_back({static_cast<int>(random.below(300)),
+                     Eigen::Vector3d(4.0 * random.uniform() - 1.5, 4.0 * random.uniform() - 1.5, 4.0 * random.uniform() - 1.5)});
+  std::vector<int> expected(static_cast<std::size_t>(dt.cells.rows()), -1);
+  for (const SightLine& line : lines) {
+    const std::vector<int> one = line_of_sight_depths(dt, P, {line});
+    for (std::size_t c = 0; c < one.size(); ++c)
+      if (one[c] >= 0 && (expected[c] < 0 || one[c] < expected[c])) expected[c] = one[c];
+  }
+  EXPECT_EQ(line_of_sight_depths(dt, P, lines), expected);
+  EXPECT_GT(std::count_if(expected.begin(), expected.end(), [](int d) { return d > 0; }), dt.cells.rows() / 4);
+}
+
 TEST(LineOfSight, SkipsLinesWithoutAViewpoint) {
   Eigen::MatrixX3d P(5, 3);
   P << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1;
