@@ -10,6 +10,7 @@
 #include "smoothing/patches_json.h"
 #include "smoothing/shaded_preview.h"
 #include "smoothing/tessellation.h"
+#include "smoothing/tessellation_density.h"
 
 #include <chrono>
 #include <numbers>
@@ -214,9 +215,14 @@ json process_session(const acquisition::SessionContents& session, const fs::path
       report["smoothing"] = {{"error", e.what()}};
     }
     seconds["smoothing"] = watch.lap();
-    std::optional<TriangleMesh> coarse;  // the smooth surface, tessellated lightly for the picture and the accuracy
+    // The smooth surface at one density for the picture and the accuracy:
+    // every patch sampled alike (the accuracy's samples are vertices and
+    // face centroids; smooth.ply's finer bulges would weigh more).
+    std::optional<TriangleMesh> coarse;
     if (smooth) {
-      write_tessellation_ply(smooth->surface, options.density, smooth_path, options.overwrite);
+      const ChosenTessellation tessellation = choose_tessellation(smooth->surface, options.density);
+      report["smoothing"]["tessellation"] = describe(tessellation);
+      write_tessellation_ply(smooth->surface, tessellation.plan, smooth_path, options.overwrite);
       io::write_file_atomically(patches_path, patches_json(smooth->surface, scheme_name(options.smoothing.scheme)),
                                 options.overwrite);
       outputs["smooth"] = smooth_path.string();

@@ -22,7 +22,10 @@ namespace scanstation::station {
 ///               (its on_step is called too)
 /// live          options of a boundary grown during the processing
 /// on_live_step  after each step fed to a boundary grown here (live views)
-/// smoothing     the surface stage; density  segments per patch edge in smooth.ply
+/// smoothing     the surface stage
+/// density       segments per patch edge in smooth.ply; none: each patch's
+///               own, the coarsest within 2e-4 of the surface's size
+///               (smoothing/tessellation_density.h)
 /// preview_px    panel size of preview.png (0: no picture)
 /// truth         the object's true surface in its own coordinates (a
 ///               simulated scan): the report measures the points, the
@@ -44,7 +47,7 @@ struct SessionProcessing {
   /// its step's camera, outliers removed or not).
   bool lines_of_sight = true;
   SurfaceSmoothingOptions smoothing = station_smoothing();
-  int density = 4;
+  std::optional<int> density;
   int preview_px = 400;
   std::optional<TriangleMesh> truth;
   nlohmann::json extra = nlohmann::json::object();

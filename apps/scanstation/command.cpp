@@ -2,10 +2,12 @@
 
 #include "core/errors.h"
 #include "core/io/file_format.h"
+#include "smoothing/tessellation_density.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace scanstation::app {
@@ -42,6 +44,39 @@ CLI::Validator finite_range(double low, double high) {
         return std::string();
       },
       fmt::format("in [{} - {}]", low, high));
+}
+
+void add_density_option(CLI::App& app, std::optional<int>& density) {
+  app.add_option_function<std::string>(
+         "--density",
+         [&density](const std::string& value) {
+           density = value == "auto" ? std::nullopt : parse_whole<int>(value);
+         },
+         "Smooth surface tessellation: segments per patch edge (1-64), or auto: per patch, the fewest (up to 16) "
+         "whose triangles stay within 2e-4 of the surface's size of it")
+      ->check(CLI::Validator(
+          [](const std::string& value) {
+            const std::optional<int> n = parse_whole<int>(value);
+            return value == "auto" || (n && *n >= 1 && *n <= 64) ? std::string()
+                                                                 : "expected auto or a whole number in [1, 64], got " + value;
+          },
+          "auto|N"))
+      ->default_str("auto");
+}
+
+void print_tessellation(const nlohmann::json& t) {
+  const auto faces = t["faces"].get<std::size_t>();
+  const double deviation = t["deviation"].get<double>();
+  if (!t["automatic"].get<bool>()) {
+    std::printf("tessellated at %d segments per patch edge: %zu triangles, at most %.2g from the patches\n",
+                t["density"].get<int>(), faces, deviation);
+    return;
+  }
+  std::printf("tessellated per patch, 1 to %d segments per edge: %zu triangles within %.2g of the patches",
+              t["largest_density"].get<int>(), faces, t["tolerance"].get<double>());
+  if (const auto above = t["patches_above_tolerance"].get<std::size_t>(); above > 0)
+    std::printf(" but %zu bulging patch(es), at most %.2g off at %d", above, deviation, kAutomaticDensityLimit);
+  std::printf("\n");
 }
 
 }  // namespace scanstation::app

@@ -9,8 +9,9 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <filesystem>
-#include <optional>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <spdlog/logger.h>
 #include <string>
 #include <vector>
@@ -64,6 +65,16 @@ CLI::Validator non_negative_integer();
 /// For floating-point options: a finite number in [low, high]. CLI::Range
 /// alone lets "nan" through (every comparison with it is false).
 CLI::Validator finite_range(double low, double high);
+
+/// --density N|auto (smooth, scan, replay): segments per patch edge of the
+/// tessellated smooth surface, 1 to 64; "auto" (the default) leaves
+/// `density` empty: each patch the coarsest within the default tolerance
+/// (smoothing/tessellation_density.h).
+void add_density_option(CLI::App& app, std::optional<int>& density);
+
+/// One line on the tessellation chosen (smoothing/tessellation_density.h
+/// describe()).
+void print_tessellation(const nlohmann::json& tessellation);
 
 /// Refuses, before the work, an output name whose format cannot hold a
 /// triangle mesh (xyz would keep the points only, svg holds 2D polygons);

@@ -21,9 +21,7 @@ class ReplayCommand final : public Command {
     cli_->add_option("-o,--output", folder_, "Folder for the results (default: SESSION/replay)");
     cli_->add_option("--snapshot-every", snapshot_every_, "Write the live boundary as OUT/snapshots/boundary-step-NNNN.ply every K steps")
         ->check(CLI::Range(0, 100000));
-    cli_->add_option("--density", density_, "smooth.ply: segments per patch edge")
-        ->check(CLI::Range(1, 64))
-        ->capture_default_str();
+    add_density_option(*cli_, density_);
     cli_->add_option("--calibration", calibration_,
                      "Triangulate with this station calibration file (e.g. a recalibration after the scan) instead "
                      "of the geometry the session recorded; refused when made for other devices, incomplete or stale");
@@ -77,7 +75,7 @@ class ReplayCommand final : public Command {
   std::filesystem::path session_;
   std::filesystem::path folder_;
   int snapshot_every_ = 0;
-  int density_ = 4;
+  std::optional<int> density_;  // none: automatic
   std::filesystem::path calibration_;
   double calibration_max_age_ = acquisition::kCalibrationMaxAgeDays;
   ScanParameterOptions parameters_;

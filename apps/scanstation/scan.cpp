@@ -38,9 +38,7 @@ class ScanCommand final : public Command {
     cli_->add_option("--snapshot-every", job_.snapshot_every,
                      "Write the live boundary as SESSION/snapshots/boundary-step-NNNN.ply every K steps")
         ->check(CLI::Range(0, 100000));
-    cli_->add_option("--density", job_.density, "smooth.ply: segments per patch edge")
-        ->check(CLI::Range(1, 64))
-        ->capture_default_str();
+    add_density_option(*cli_, job_.density);
     cli_->add_option("-o,--output", job_.folder, "Session folder (the results are written into it too)")->required();
     // Calibration (acquisition/scan_calibration.h): which geometry the scan triangulates with.
     cli_->add_option("--calibration", job_.calibration,

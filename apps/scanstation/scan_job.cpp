@@ -193,7 +193,7 @@ std::optional<TriangleMesh> known_object_surface(const acquisition::SessionManif
 }
 
 station::SessionProcessing session_processing(CommandContext& context, const acquisition::SessionManifest& manifest,
-                                              int density) {
+                                              std::optional<int> density) {
   station::SessionProcessing options;
   options.overwrite = io::Overwrite::replace;  // the command checked what it may replace
   options.density = density;
@@ -228,6 +228,7 @@ void print_results(const nlohmann::json& r) {
                   s["patches"].get<std::size_t>(), s["scheme"].get<std::string>().c_str(),
                   s["g1"]["max_normal_angle"].get<double>(), s["g1"]["max_normal_angle_where_exact"].get<double>(),
                   s["dependent_edges"].get<std::size_t>(), s["sign_condition_violations"].get<std::size_t>());
+    if (s.contains("tessellation")) print_tessellation(s["tessellation"]);
   }
   if (r.contains("accuracy")) {
     const nlohmann::json& a = r["accuracy"];

@@ -37,7 +37,7 @@ struct ScanJob {
   acquisition::LaserScanParameters parameters;
   acquisition::StereoScanParameters stereo_parameters = acquisition::stereo_scan_defaults();
   int snapshot_every = 0;
-  int density = 4;
+  std::optional<int> density;  ///< smooth.ply's segments per patch edge; none: automatic
   std::string calibration;  ///< file, "sim-truth", or "" (the station's, else the simulator's truth)
   double calibration_max_age = acquisition::kCalibrationMaxAgeDays;
 };
@@ -52,7 +52,7 @@ void run_scan_job(CommandContext& context, const ScanJob& job);
 /// The processing options every command shares: progress, live events,
 /// the known object's true surface for a simulated session.
 station::SessionProcessing session_processing(CommandContext& context, const acquisition::SessionManifest& manifest,
-                                              int density);
+                                              std::optional<int> density);
 
 /// The true surface of a simulated session's object in its own coordinates
 /// (the built-in shape, or the mesh file as recorded when it is still

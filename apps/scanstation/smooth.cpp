@@ -11,6 +11,7 @@
 #include "smoothing/reflection_lines.h"
 #include "smoothing/surface_smoothing.h"
 #include "smoothing/tessellation.h"
+#include "smoothing/tessellation_density.h"
 
 #include <cstdio>
 #include <map>
@@ -68,7 +69,7 @@ class SmoothCommand final : public Command {
                      "G¹ exactly would move a control point farther than this many macro edge lengths (a bulge); "
                      "default: always exact, as the thesis")
         ->check(finite_range(1e-9, 1e9));
-    cli_->add_option("--density", density_, "Tessellation: segments per patch edge")->capture_default_str();
+    add_density_option(*cli_, density_);
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
     cli_->add_option("--zebra", zebra_, "Also write a reflection-line (zebra) PNG: smooth surface left, mesh right");
     cli_->footer("The report holds the largest normal angle and tangent-plane residual (Eq. 8.7) over samples on every "
@@ -155,11 +156,12 @@ class SmoothCommand final : public Command {
     // reflection-line picture go through the tessellated mesh in memory.
     const bool stream = output_.extension() == ".ply" && !zebra_;
     StageTimer tessellate_timer(context.report, "tessellation");
-    const TriangleMesh dense = stream ? TriangleMesh{} : tessellate(surface, density_);
+    const ChosenTessellation tessellation = choose_tessellation(surface, density_);
+    const TriangleMesh dense = stream ? TriangleMesh{} : tessellate(surface, tessellation.plan);
     tessellate_timer.stop();
     StageTimer write_timer(context.report, "write");
     if (stream)
-      write_tessellation_ply(surface, density_, output_, context.overwrite);
+      write_tessellation_ply(surface, tessellation.plan, output_, context.overwrite);
     else
       io::write_mesh(output_, dense, {std::nullopt, std::nullopt, context.overwrite});
     if (patches_) io::write_file_atomically(*patches_, patches_json(surface, scheme_), context.overwrite);
@@ -168,12 +170,13 @@ class SmoothCommand final : public Command {
     nlohmann::json& result = context.report["result"];
     result = smoothing_report(smoothed, options, mesh.face_count());
     result["normals"] = normals_;
-    result["tessellation"] = {
-        {"density", density_}, {"streamed", stream}, {"faces", surface.patches.size() * density_ * density_}};
+    result["tessellation"] = describe(tessellation);
+    result["tessellation"]["streamed"] = stream;
     std::printf("wrote %s: %zu cubic patches over %lld triangles, largest normal angle across patch edges %.3g rad, "
                 "%zu normal(s) adjusted\n",
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
+    print_tessellation(result["tessellation"]);
     if (smoothed.isolated_vertices > 0)
       std::printf("%zu vertex(es) in no triangle left out (not on the surface)\n", smoothed.isolated_vertices);
     if (options.scheme == SplitScheme::adaptive_two_split)
@@ -219,7 +222,7 @@ class SmoothCommand final : public Command {
   double tension_ = 1.0 / 3.0;
   double min_angle_ = 20.0;
   std::optional<double> max_move_;
-  int density_ = 4;
+  std::optional<int> density_;  // none: automatic
   std::optional<std::filesystem::path> patches_, zebra_;
 };
 

@@ -3,6 +3,9 @@
 #include "cli_support.h"
 #include "test_support.h"
 
+#include "core/io/mesh_io.h"
+#include "core/mesh_topology.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -464,6 +467,8 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   EXPECT_EQ(result["g1"]["max_normal_angle_where_exact"], result["g1"]["max_normal_angle"]);
   EXPECT_EQ(result["g1"]["unmatched_edges"], 0);
   EXPECT_EQ(result["patches"], 6 * result["macro_triangles"].get<int>());  // six-split by default
+  EXPECT_EQ(result["tessellation"]["automatic"], false);
+  EXPECT_EQ(result["tessellation"]["faces"], 4 * result["patches"].get<int>());  // --density 2
   EXPECT_GT(result["oscillation"]["mean_relative"].get<double>(), 0.0);
   EXPECT_TRUE(report["seconds"].contains("patches"));
   const nlohmann::json patches = nlohmann::json::parse(slurp(dir / "p.json"));
@@ -481,6 +486,22 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   EXPECT_GT(two["two_split_triangles"].get<int>(), 0);
   EXPECT_EQ(two["two_split_triangles"].get<int>(), 2 * two["two_split_pairs"].get<int>());
   EXPECT_GT(two["adjacent_two_split_pairs"].get<int>(), 0);  // eight at 40°: 108 of 108
+  // Without --density: a density per patch, within the tolerance, and the
+  // streamed PLY is one closed surface of the faces reported.
+  const nlohmann::json& tessellation = two["tessellation"];
+  EXPECT_EQ(tessellation["automatic"], true);
+  // eight's two-split bulges at its thin pairs: a few dozen patches stay
+  // above the tolerance at the largest density, and the report says so.
+  const auto above = tessellation["patches_above_tolerance"].get<std::size_t>();
+  EXPECT_LT(above, two["patches"].get<std::size_t>() / 20);
+  EXPECT_EQ(above > 0, tessellation["deviation"].get<double>() > tessellation["tolerance"].get<double>());
+  EXPECT_EQ(tessellation["largest_density"].get<int>(), above > 0 ? 16 : tessellation["largest_density"].get<int>());
+  EXPECT_GT(tessellation["largest_density"].get<int>(), 1);
+  const TriangleMesh smooth = io::read_mesh(dir / "t.ply");
+  EXPECT_EQ(smooth.face_count(), tessellation["faces"].get<Eigen::Index>());
+  EXPECT_LT(smooth.face_count(), two["patches"].get<Eigen::Index>() * tessellation["largest_density"].get<int>() *
+                                     tessellation["largest_density"].get<int>());
+  EXPECT_TRUE(mesh_topology(smooth).closed);
   const nlohmann::json two_patches = nlohmann::json::parse(slurp(dir / "t.json"));
   std::set<int> splits;
   for (const nlohmann::json& patch : two_patches["patches"]) splits.insert(patch["split"].get<int>());
@@ -512,6 +533,9 @@ TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
   EXPECT_THAT(r.err, testing::HasSubstr("not shared by exactly two faces"));
   const std::string eight = path(test::cgal_data("meshes/eight.off"));
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --density 0").exit_code, 1);
+  r = scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --density fine");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("expected auto or a whole number in [1, 64], got fine"));
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --scheme bogus").exit_code, 1);
   EXPECT_EQ(scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --normals given").exit_code, 1);
   // "nan" passes a plain range check (every comparison with it is false).

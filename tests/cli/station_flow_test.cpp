@@ -62,6 +62,19 @@ TEST_P(StationFlow, ClosedGenusZeroThroughAllPointsNearTheTruthAndReplayedByteFo
               c.object, smoothing["g1"]["max_normal_angle"].get<double>(), bulge,
               smoothing["dependent_edges"].get<int>());
   EXPECT_LE(bulge, 1.5);
+  // smooth.ply: a density per patch (automatic), one closed genus-0 surface
+  // of the faces reported, within the tolerance but for a few bulges.
+  const json& tessellation = smoothing["tessellation"];
+  std::printf("%s: smooth.ply %lld triangles for %lld patches, %lld above the tolerance\n", c.object,
+              tessellation["faces"].get<long long>(), smoothing["patches"].get<long long>(),
+              tessellation["patches_above_tolerance"].get<long long>());
+  EXPECT_EQ(tessellation["automatic"], true);
+  EXPECT_LT(tessellation["patches_above_tolerance"].get<Eigen::Index>(), smoothing["patches"].get<Eigen::Index>() / 100);
+  const TriangleMesh smooth = io::read_mesh(dir / "s" / "smooth.ply");
+  EXPECT_EQ(smooth.face_count(), tessellation["faces"].get<Eigen::Index>());
+  const MeshTopology smooth_topology = mesh_topology(smooth);
+  EXPECT_TRUE(smooth_topology.closed && smooth_topology.oriented);
+  EXPECT_EQ(smooth_topology.genus.value_or(-1), 0);
 
   const Outcome replay = scanstation("replay " + (dir / "s").string() + " -o " + (dir / "r").string());
   ASSERT_EQ(replay.exit_code, 0) << replay.err;
