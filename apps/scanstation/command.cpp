@@ -52,8 +52,8 @@ void add_density_option(CLI::App& app, std::optional<int>& density) {
          [&density](const std::string& value) {
            density = value == "auto" ? std::nullopt : parse_whole<int>(value);
          },
-         "Smooth surface tessellation: segments per patch edge (1-64), or auto: per patch, the fewest (up to 16) "
-         "whose triangles stay within 2e-4 of the surface's size of it")
+         "Smooth surface tessellation: segments per patch edge (1-64), or auto: per patch the fewest (up to 16) that "
+         "keep its triangles within 2e-4 of the surface's bounding-box diagonal of it")
       ->check(CLI::Validator(
           [](const std::string& value) {
             const std::optional<int> n = parse_whole<int>(value);
