@@ -86,6 +86,7 @@ class PatchLayout {
   int m() const { return m_; }
   int edge_segments(int k) const { return e_[static_cast<std::size_t>(k)]; }
   int points() const { return inner_start_ + inner_points(); }
+  int first_inner() const { return inner_start_; }
   int inner_points() const { return (m_ - 1) * (m_ - 2) / 2; }
   int triangles() const { return regular_ ? m_ * m_ : (m_ - 3) * (m_ - 3) + e_[0] + e_[1] + e_[2] + 3 * (m_ - 3); }
 
@@ -97,9 +98,8 @@ class PatchLayout {
   }
   // Inner grid point (a, b), a, b ≥ 1, a + b ≤ m − 1.
   int inner(int a, int b) const {
-    int local = 0;
-    for (int row = 1; row < a; ++row) local += m_ - row - 1;
-    return inner_start_ + local + (b - 1);
+    // Rows 1 … a−1 hold m−2, m−3, … points.
+    return inner_start_ + (a - 1) * (m_ - 1) - (a - 1) * a / 2 + (b - 1);
   }
   // Grid point (a, b), on the border too (the regular grid only).
   int grid(int a, int b) const {
@@ -216,8 +216,7 @@ struct StreamNumbering {
   // Number of local point `local` of patch p.
   std::size_t global(int p, const PatchLayout& layout, int local) const {
     if (local < 3) return std::size_t(corner[3 * std::size_t(p) + std::size_t(local)]);
-    if (!layout.on_edge(local))
-      return inner_offset[std::size_t(p)] + std::size_t(local - (layout.points() - layout.inner_points()));
+    if (!layout.on_edge(local)) return inner_offset[std::size_t(p)] + std::size_t(local - layout.first_inner());
     const auto [k, step] = layout.edge_step(local);
     const std::size_t slot = 3 * std::size_t(p) + std::size_t(k);
     const int e = edge[slot];
