@@ -108,7 +108,7 @@ void CgalDelaunay2(benchmark::State& state) {
 }
 
 // The same triangulation with the points sorted on both cores first, as
-// reconstruct_curve sorts them (parallel_spatial_sort), then inserted one
+// reconstruct_curve sorts them (brio_hilbert_sort), then inserted one
 // by one, each located from the last: the floor when both cores may work.
 void CgalDelaunay2Sorted(benchmark::State& state) {
   const Eigen::MatrixX2d& P = curve_points(static_cast<int>(state.range(0)), state.range(1));
@@ -116,7 +116,7 @@ void CgalDelaunay2Sorted(benchmark::State& state) {
     std::vector<std::pair<Kernel::Point_2, int>> points;
     points.reserve(static_cast<std::size_t>(P.rows()));
     for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(Kernel::Point_2(P(i, 0), P(i, 1)), static_cast<int>(i));
-    parallel_spatial_sort(points);
+    brio_hilbert_sort(points);
     CGAL::Delaunay_triangulation_2<Kernel> dt;
     CGAL::Delaunay_triangulation_2<Kernel>::Vertex_handle hint;
     for (const auto& [point, row] : points) hint = dt.insert(point, hint == nullptr ? nullptr : hint->face());

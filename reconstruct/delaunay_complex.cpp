@@ -56,7 +56,7 @@ using FirstOfPair = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
 // 2D sorts on both cores: the sort is a seventh of a 2D reconstruction, and
 // nothing else runs beside it (3D hashes the points on the other core
 // meanwhile, and a parallel sort there measured no faster; docs/design.md).
-void spatial_order(std::vector<std::pair<Kernel::Point_2, int>>& input) { parallel_spatial_sort(input); }
+void spatial_order(std::vector<std::pair<Kernel::Point_2, int>>& input) { brio_hilbert_sort(input); }
 void spatial_order(std::vector<std::pair<Kernel::Point_3, int>>& input) {
   CGAL::spatial_sort(input.begin(), input.end(), CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>());
 }

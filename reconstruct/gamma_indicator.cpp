@@ -19,14 +19,13 @@ double signed_magnitude(double r_over_R, double side_vertex, double side_centre)
 }  // namespace
 
 double gamma_indicator(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& l) {
-  const Eigen::Vector2d u = a - l, v = b - l;  // circumcentre relative to l
-  const double d = 2.0 * (u.x() * v.y() - u.y() * v.x());
-  const Eigen::Vector2d centre = Eigen::Vector2d(v.y() * u.squaredNorm() - u.y() * v.squaredNorm(),
-                                                 u.x() * v.squaredNorm() - v.x() * u.squaredNorm()) / d;
-  const double R = centre.norm(), r = 0.5 * (b - a).norm();
-  if (!std::isfinite(R) || R == 0.0) return 1.0;
-  const Eigen::Vector2d e = b - a, n(-e.y(), e.x());
-  return signed_magnitude(r / R, n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.1, Eq. (5.1)
+  // By the inscribed angle theorem |ab| = 2R sin θ, θ the angle at l, so
+  // r/R = sin θ; and the circumcentre lies on l's side of ab exactly when θ
+  // is acute. No circumcentre to construct: one division, no cancellation.
+  const Eigen::Vector2d u = a - l, v = b - l;
+  const double cross = u.x() * v.y() - u.y() * v.x(), dot = u.dot(v), lengths = u.norm() * v.norm();
+  if (cross == 0.0 || !std::isfinite(lengths)) return 1.0;  // no circle through them
+  return signed_magnitude(std::abs(cross) / lengths, dot, 1.0);  // Definition 5.1, Eq. (5.1)
 }
 
 double gamma_indicator(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

@@ -1,18 +1,31 @@
-// The spatial insertion order of 2D points, sorted on both cores.
+// The spatial insertion order of 2D points: BRIO rounds, each along a
+// Hilbert curve, sorted by integer keys on all cores.
 #pragma once
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
 namespace scanstation {
 
-/// Sorts (point, index) pairs into CGAL's randomized Hilbert order (BRIO,
-/// `CGAL::spatial_sort` with the median policy), the halves of each split
-/// sorted in parallel (TBB). The order is deterministic, but not the one
-/// the sequential sort gives: CGAL's parallel sort restarts the curve's
-/// orientation in each part of at most 8192 points.
-void parallel_spatial_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points);
+/// Index of the cell (x, y) of a 2^28 × 2^28 grid along the Hilbert curve
+/// that starts at (0, 0) and ends at (2^28 − 1, 0); x, y < 2^28.
+std::uint64_t hilbert_index_2(std::uint32_t x, std::uint32_t y);
+
+/// Sorts (point, index) pairs into a biased randomized insertion order
+/// (BRIO, Amenta, Choi & Rote 2003) as `CGAL::spatial_sort` makes it: the
+/// last round holds three quarters of the points, each earlier round a
+/// quarter of the round after it, down to 16 points, and each round follows
+/// a Hilbert curve. The curve is that of a square grid over the points'
+/// bounding box, 2^28 cells a side, and the rounds are drawn by a hash of
+/// `index`, so the order is deterministic and the same on any number of
+/// threads. Points in one grid cell keep their index order.
+///
+/// CGAL's median policy cuts at medians instead of grid lines: the keys
+/// here are computed and sorted on all cores in a few passes, where the
+/// median sort is a recursion of selections.
+void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points);
 
 }  // namespace scanstation

@@ -1,0 +1,160 @@
+// The 2D insertion order: Hilbert indices and BRIO rounds.
+#include "reconstruct/gamma_indicator.h"
+#include "reconstruct/spatial_order_2.h"
+#include "sim/random.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace scanstation {
+namespace {
+
+using Point = CGAL::Epick::Point_2;
+using sim::Random;
+
+// The Hilbert index by the textbook loop: one level at a time, the
+// coordinates themselves turned and mirrored into the quadrant's frame.
+std::uint64_t textbook_hilbert(std::uint32_t x, std::uint32_t y) {
+  constexpr std::uint32_t side = 1u << 28;
+  std::uint64_t d = 0;
+  for (std::uint32_t s = side / 2; s > 0; s /= 2) {
+    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
+    if (ry == 0) {
+      if (rx == 1) {
+        x = side - 1 - x;
+        y = side - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+TEST(HilbertIndex2, MatchesTheTextbookLoop) {
+  Random random(11);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const auto x = static_cast<std::uint32_t>(random.uniform(0.0, 1.0) * (1u << 28));
+    const auto y = static_cast<std::uint32_t>(random.uniform(0.0, 1.0) * (1u << 28));
+    ASSERT_EQ(hilbert_index_2(x, y), textbook_hilbert(x, y)) << x << ", " << y;
+  }
+  EXPECT_EQ(hilbert_index_2(0, 0), 0u);
+  EXPECT_EQ(hilbert_index_2((1u << 28) - 1, 0), (std::uint64_t{1} << 56) - 1);
+}
+
+TEST(HilbertIndex2, VisitsEveryCellOfACoarseGridOnceThroughNeighbours) {
+  constexpr int side = 64, shift = 28 - 6;
+  std::vector<std::pair<std::uint64_t, std::pair<int, int>>> cells;
+  for (int x = 0; x < side; ++x)
+    for (int y = 0; y < side; ++y)
+      cells.push_back({hilbert_index_2(static_cast<std::uint32_t>(x) << shift, static_cast<std::uint32_t>(y) << shift), {x, y}});
+  std::sort(cells.begin(), cells.end());
+  for (std::size_t i = 1; i < cells.size(); ++i) {
+    ASSERT_LT(cells[i - 1].first, cells[i].first);
+    const auto [x0, y0] = cells[i - 1].second;
+    const auto [x1, y1] = cells[i].second;
+    ASSERT_EQ(std::abs(x1 - x0) + std::abs(y1 - y0), 1) << "a jump after cell " << i - 1;
+  }
+}
+
+// Integer points in [0, 1023]² with both corners present: the sort's grid
+// then puts coordinate x on grid line x · 2^18 exactly.
+std::vector<std::pair<Point, int>> grid_points(int n, std::uint64_t seed, double scale) {
+  Random random(seed);
+  std::vector<std::pair<Point, int>> points = {{Point(0, 0), 0}, {Point(1023 * scale, 1023 * scale), 1}};
+  for (int i = 2; i < n; ++i)
+    points.push_back({Point(std::floor(random.uniform(0.0, 1024.0)) * scale, std::floor(random.uniform(0.0, 1024.0)) * scale), i});
+  return points;
+}
+
+std::uint64_t grid_index(const Point& p, double scale) {
+  return hilbert_index_2(static_cast<std::uint32_t>(p.x() / scale) << 18, static_cast<std::uint32_t>(p.y() / scale) << 18);
+}
+
+TEST(BrioHilbertSort, RoundsOfAQuarterEachFollowTheCurve) {
+  constexpr int n = 100000;
+  auto points = grid_points(n, 5, 1.0);
+  brio_hilbert_sort(points);
+  std::vector<char> seen(n, 0);
+  for (const auto& [p, index] : points) {
+    ASSERT_FALSE(seen[static_cast<std::size_t>(index)]) << "index " << index << " twice";
+    seen[static_cast<std::size_t>(index)] = 1;
+  }
+  // Runs along the curve (an equal cell keeps index order): one per round,
+  // 8 rounds for 100k points (100000 / 4^7 ≤ 16), the last of three quarters.
+  std::vector<std::size_t> run_starts = {0};
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const auto a = grid_index(points[i - 1].first, 1.0), b = grid_index(points[i].first, 1.0);
+    if (b < a || (a == b && points[i].second < points[i - 1].second)) run_starts.push_back(i);
+  }
+  EXPECT_LE(run_starts.size(), 8u);
+  EXPECT_GE(run_starts.size(), 6u);
+  const double last = static_cast<double>(n - run_starts.back()) / n;
+  EXPECT_NEAR(last, 0.75, 0.01);
+  const double before_last = static_cast<double>(run_starts.back() - run_starts[run_starts.size() - 2]) / n;
+  EXPECT_NEAR(before_last, 0.1875, 0.01);
+}
+
+TEST(BrioHilbertSort, PowerOfTwoScalesAndRepeatsKeepTheOrder) {
+  constexpr int n = 20000;
+  auto reference = grid_points(n, 9, 1.0);
+  brio_hilbert_sort(reference);
+  for (const double scale : {std::ldexp(1.0, -1040), std::ldexp(1.0, -300), std::ldexp(1.0, 1000)}) {
+    auto points = grid_points(n, 9, scale);
+    brio_hilbert_sort(points);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(points[static_cast<std::size_t>(i)].second, reference[static_cast<std::size_t>(i)].second) << scale;
+  }
+  auto again = grid_points(n, 9, 1.0);
+  brio_hilbert_sort(again);
+  for (int i = 0; i < n; ++i) ASSERT_EQ(again[static_cast<std::size_t>(i)].second, reference[static_cast<std::size_t>(i)].second);
+}
+
+TEST(BrioHilbertSort, EqualPointsAndNaNAreOrderedWithoutFuss) {
+  std::vector<std::pair<Point, int>> same;
+  for (int i = 0; i < 1000; ++i) same.push_back({Point(2.5, -1), i});
+  same.push_back({Point(std::nan(""), 0), 1000});
+  brio_hilbert_sort(same);
+  std::set<int> indices;
+  for (const auto& [p, index] : same) indices.insert(index);
+  EXPECT_EQ(indices.size(), 1001u);
+}
+
+// Definition 5.1 built the long way: the circumcentre of (a, b, l), its
+// radius R, r = |ab|/2, and the side of ab it lies on.
+double gamma_by_circumcentre(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& l) {
+  Eigen::Matrix2d m;
+  m << (b - a).transpose(), (l - a).transpose();
+  const Eigen::Vector2d rhs(0.5 * (b - a).squaredNorm(), 0.5 * (l - a).squaredNorm());
+  const Eigen::Vector2d centre = a + m.fullPivLu().solve(rhs);
+  const double ratio = 0.5 * (b - a).norm() / (centre - a).norm();
+  const Eigen::Vector2d e = b - a, normal(-e.y(), e.x());
+  const double side = normal.dot(l - a) * normal.dot(centre - a);
+  return side > 0 ? 1 - ratio : -(1 - ratio);
+}
+
+TEST(GammaIndicator2, IsDefinition51OnRandomTriangles) {
+  Random random(3);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Eigen::Vector2d a(random.uniform(-1, 1), random.uniform(-1, 1)), b(random.uniform(-1, 1), random.uniform(-1, 1)),
+        l(random.uniform(-1, 1), random.uniform(-1, 1));
+    const double expected = gamma_by_circumcentre(a, b, l);
+    if (std::abs(expected) < 1e-9 || !std::isfinite(expected)) continue;
+    ASSERT_NEAR(gamma_indicator(a, b, l), expected, 1e-9 * (1 + 1 / (1 - std::abs(expected))));
+  }
+  // A right angle at l puts the centre on ab: 0. Collinear: no circle, 1.
+  EXPECT_EQ(gamma_indicator(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, 0)), 0.0);
+  EXPECT_EQ(gamma_indicator(Eigen::Vector2d(1, 0), Eigen::Vector2d(3, 0), Eigen::Vector2d(2, 0)), 1.0);
+  // l far above the edge: near +1; l just above its middle: near −1.
+  EXPECT_GT(gamma_indicator(Eigen::Vector2d(-1, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1000)), 0.99);
+  EXPECT_LT(gamma_indicator(Eigen::Vector2d(-1, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 0.001)), -0.99);
+}
+
+}  // namespace
+}  // namespace scanstation
