@@ -10,7 +10,7 @@
 // reconstruction sorts them, then inserted.
 #include "bench/benchmark_main.h"
 #include "reconstruct/boundary_reconstruction.h"
-#include "reconstruct/spatial_order_2.h"
+#include "reconstruct/spatial_order.h"
 #include "sim/outlines.h"
 #include "sim/random.h"
 #include "sim/sampling.h"

@@ -2,14 +2,11 @@
 
 #include "core/errors.h"
 #include "reconstruct/cell_blocks.h"
-#include "reconstruct/spatial_order_2.h"
+#include "reconstruct/spatial_order.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Spatial_sort_traits_adapter_3.h>
-#include <CGAL/property_map.h>
-#include <CGAL/spatial_sort.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
@@ -39,31 +36,20 @@ void require_points(Eigen::Index n, int needed, const char* shape) {
                        ", got " + std::to_string(n));
 }
 
-// Inserts (point, index) pairs in spatial order (CGAL's randomized Hilbert
-// order, BRIO: a plain Hilbert order is about 10× slower on points along a
-// curve), each located from the previous vertex, recording the index on the
-// vertex. Sorting the pairs themselves rather than indices into them keeps
-// the sort cache-friendly: this is as fast as CGAL's plain range insertion,
-// where the with-info range insertion is about 30% slower. A repeated point
+// Inserts (point, index) pairs in spatial order (randomized Hilbert order,
+// BRIO: a plain Hilbert order is about 10× slower on points along a curve;
+// brio_hilbert_sort), each located from the previous vertex, recording the
+// index on the vertex. Sorting the pairs themselves rather than indices into
+// them keeps the insertion's reads in order: CGAL's with-info range
+// insertion is about 30% slower than its plain one. A repeated point
 // leaves the triangulation as it was; CGAL returns the vertex already there,
 // which keeps its index, and repeat(index, vertex) hears of it.
 Delaunay2::Face_handle near(Delaunay2::Vertex_handle v) { return v == Delaunay2::Vertex_handle() ? Delaunay2::Face_handle() : v->face(); }
 Delaunay3::Cell_handle near(Delaunay3::Vertex_handle v) { return v == Delaunay3::Vertex_handle() ? Delaunay3::Cell_handle() : v->cell(); }
 
-template <typename Point>
-using FirstOfPair = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
-
-// 2D sorts on both cores: the sort is a seventh of a 2D reconstruction, and
-// nothing else runs beside it (3D hashes the points on the other core
-// meanwhile, and a parallel sort there measured no faster; docs/design.md).
-void spatial_order(std::vector<std::pair<Kernel::Point_2, int>>& input) { brio_hilbert_sort(input); }
-void spatial_order(std::vector<std::pair<Kernel::Point_3, int>>& input) {
-  CGAL::spatial_sort(input.begin(), input.end(), CGAL::Spatial_sort_traits_adapter_3<Kernel, FirstOfPair<Kernel::Point_3>>());
-}
-
 template <typename Triangulation, typename Point, typename Repeat>
 void insert_in_spatial_order(Triangulation& dt, std::vector<std::pair<Point, int>>& input, Repeat&& repeat) {
-  spatial_order(input);
+  brio_hilbert_sort(input);
   typename Triangulation::Vertex_handle hint;
   for (const auto& [point, index] : input) {
     const auto before = dt.number_of_vertices();

@@ -1,12 +1,13 @@
 // The 2D insertion order: Hilbert indices and BRIO rounds.
 #include "reconstruct/gamma_indicator.h"
-#include "reconstruct/spatial_order_2.h"
+#include "reconstruct/spatial_order.h"
 #include "sim/random.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -61,6 +62,32 @@ TEST(HilbertIndex2, VisitsEveryCellOfACoarseGridOnceThroughNeighbours) {
     const auto [x0, y0] = cells[i - 1].second;
     const auto [x1, y1] = cells[i].second;
     ASSERT_EQ(std::abs(x1 - x0) + std::abs(y1 - y0), 1) << "a jump after cell " << i - 1;
+  }
+}
+
+// A Hilbert curve visits the cells of every level's grid once each, each
+// next to the last: along the coarse grid of the top 4 levels (cells at
+// multiples of 2^15) and along the first 16³ cells at the finest level.
+TEST(HilbertIndex3, VisitsEveryCellOfACoarseAndAFineGridOnceThroughNeighbours) {
+  for (const int shift : {19 - 4, 0}) {
+    std::vector<std::pair<std::uint64_t, std::array<int, 3>>> cells;
+    for (int x = 0; x < 16; ++x)
+      for (int y = 0; y < 16; ++y)
+        for (int z = 0; z < 16; ++z)
+          cells.push_back({hilbert_index_3(static_cast<std::uint32_t>(x) << shift, static_cast<std::uint32_t>(y) << shift,
+                                           static_cast<std::uint32_t>(z) << shift),
+                           {x, y, z}});
+    std::sort(cells.begin(), cells.end());
+    EXPECT_EQ(cells.front().second, (std::array<int, 3>{0, 0, 0}));
+    for (std::size_t i = 1; i < cells.size(); ++i) {
+      ASSERT_LT(cells[i - 1].first, cells[i].first) << "shift " << shift;
+      int steps = 0;
+      for (int k = 0; k < 3; ++k) steps += std::abs(cells[i].second[k] - cells[i - 1].second[k]);
+      ASSERT_EQ(steps, 1) << "a jump after cell " << i - 1 << ", shift " << shift;
+    }
+    if (shift == 0) {
+      EXPECT_EQ(cells.back().first, 4095u);  // the first 16³ cells of the curve
+    }
   }
 }
 

@@ -1,4 +1,4 @@
-#include "reconstruct/spatial_order_2.h"
+#include "reconstruct/spatial_order.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,7 +13,7 @@ namespace scanstation {
 
 namespace {
 
-constexpr int kLevels = 28;
+constexpr int kLevels2 = 28, kLevels3 = 19;
 
 // The Hilbert curve as a machine over the grid's levels, four levels a
 // step. Its state is the transform of the cell's quadrant frame against
@@ -44,16 +44,51 @@ std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
 }
 
 // Maps a coordinate's offset from the box's corner, in [0, extent], to a
-// grid line in [0, 2^28): two power-of-two factors, so that neither
+// grid line in [0, 2^levels): two power-of-two factors, so that neither
 // overflows for subnormal extents, and a clamp that also takes NaN to 0.
 struct Quantizer {
-  double low, first, second;
-  std::uint32_t operator()(double v) const {
-    const double q = (v * 0.5 - low) * first * second;
-    constexpr double top = static_cast<double>((1u << kLevels) - 1);
+  double low[3], first, second, top;
+  std::uint32_t operator()(int axis, double v) const {
+    const double q = (v * 0.5 - low[axis]) * first * second;
     return q >= 0.0 ? static_cast<std::uint32_t>(std::min(q, top)) : 0u;
   }
 };
+
+// The box of the points, in halves so that its extent cannot overflow, and
+// the grid over it, `levels` bits a side.
+template <int D, typename Point>
+Quantizer grid_over(const std::vector<std::pair<Point, int>>& points, int levels) {
+  Quantizer q{};
+  double high[3];
+  for (int k = 0; k < D; ++k) {
+    q.low[k] = std::numeric_limits<double>::infinity();
+    high[k] = -q.low[k];
+  }
+  for (const auto& [p, row] : points)
+    for (int k = 0; k < D; ++k) {
+      q.low[k] = std::min(q.low[k], p[k] * 0.5);
+      high[k] = std::max(high[k], p[k] * 0.5);
+    }
+  double extent = 0.0;
+  for (int k = 0; k < D; ++k) extent = std::max(extent, high[k] - q.low[k]);
+  const bool spread = extent > 0.0 && std::isfinite(extent);
+  const int shift = spread ? levels - 1 - std::ilogb(extent) : 0;
+  q.first = std::ldexp(spread ? 1.0 : 0.0, shift / 2);
+  q.second = std::ldexp(1.0, shift - shift / 2);
+  q.top = std::ldexp(1.0, levels) - 1.0;
+  return q;
+}
+
+// Spreads the low 21 bits of v to every third bit.
+std::uint64_t spread_3(std::uint64_t v) {
+  v &= 0x1FFFFFu;
+  v = (v | v << 32) & 0x1F00000000FFFFull;
+  v = (v | v << 16) & 0x1F0000FF0000FFull;
+  v = (v | v << 8) & 0x100F00F00F00F00Full;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
 
 struct Keyed {
   std::uint64_t key;  // round in the top byte, Hilbert index below
@@ -66,7 +101,7 @@ struct Keyed {
 std::uint64_t hilbert_index_2(std::uint32_t x, std::uint32_t y) {
   std::uint64_t index = 0;
   unsigned state = 0;
-  for (int shift = kLevels - 4; shift >= 0; shift -= 4) {
+  for (int shift = kLevels2 - 4; shift >= 0; shift -= 4) {
     const unsigned step = kNibbleSteps[state << 8 | (x >> shift & 15u) << 4 | (y >> shift & 15u)];
     index = index << 8 | (step & 255u);
     state = step >> 8;
@@ -74,37 +109,60 @@ std::uint64_t hilbert_index_2(std::uint32_t x, std::uint32_t y) {
   return index;
 }
 
-void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points) {
+std::uint64_t hilbert_index_3(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  // Skilling's transpose: from the top level down, each axis' bit either
+  // inverts the lower bits of x or exchanges them with its own (branch-free
+  // masks: the bits are as good as random), then a Gray code across the
+  // axes; the index is the three words' bits interleaved.
+  std::uint32_t X[3] = {x, y, z};
+  for (std::uint32_t q = 1u << (kLevels3 - 1); q > 1; q >>= 1) {
+    const std::uint32_t p = q - 1;
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t set = 0u - ((X[i] & q) != 0);
+      X[0] ^= p & set;
+      const std::uint32_t t = (X[0] ^ X[i]) & p & ~set;
+      X[0] ^= t;
+      X[i] ^= t;
+    }
+  }
+  X[1] ^= X[0];
+  X[2] ^= X[1];
+  std::uint32_t t = 0;
+  for (std::uint32_t q = 1u << (kLevels3 - 1); q > 1; q >>= 1) t ^= (q - 1) & (0u - ((X[2] & q) != 0));
+  for (std::uint32_t& c : X) c ^= t;
+  return spread_3(X[0]) << 2 | spread_3(X[1]) << 1 | spread_3(X[2]);
+}
+
+namespace {
+
+template <int D, typename Point>
+void sort_by_keys(std::vector<std::pair<Point, int>>& points) {
+  constexpr int levels = D == 2 ? kLevels2 : kLevels3, index_bits = D * levels;
   const std::size_t n = points.size();
   if (n < 2) return;
-  // The box, in halves so that its extent cannot overflow.
-  double low[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  double high[2] = {-low[0], -low[1]};
-  for (const auto& [p, row] : points)
-    for (int k = 0; k < 2; ++k) {
-      low[k] = std::min(low[k], p[k] * 0.5);
-      high[k] = std::max(high[k], p[k] * 0.5);
+  const Quantizer grid = grid_over<D>(points, levels);
+  const auto curve_index = [&](const Point& p) {
+    if constexpr (D == 2) {
+      return hilbert_index_2(grid(0, p.x()), grid(1, p.y()));
+    } else {
+      return hilbert_index_3(grid(0, p.x()), grid(1, p.y()), grid(2, p.z()));
     }
-  const double extent = std::max(high[0] - low[0], high[1] - low[1]);
-  const bool spread = extent > 0.0 && std::isfinite(extent);
-  const int shift = spread ? kLevels - 1 - std::ilogb(extent) : 0;
-  const Quantizer qx{low[0], std::ldexp(spread ? 1.0 : 0.0, shift / 2), std::ldexp(1.0, shift - shift / 2)};
-  const Quantizer qy{low[1], qx.first, qx.second};
+  };
 
   // BRIO rounds: P(round ≥ j from the last) = 4^-j, from pairs of leading
   // zero bits of a hash, up to the round of at most 16 points.
   int rounds = 0;
   while ((n >> (2 * rounds)) > 16) ++rounds;
-  const int prefix = std::max(0, static_cast<int>(std::bit_width(n)) - 4);  // Hilbert bits of a bucket
+  const int prefix = std::max(0, static_cast<int>(std::bit_width(n)) - 4);  // curve bits of a bucket
   const auto bucket_of = [&](std::uint64_t key) {
-    return static_cast<std::size_t>((key >> 56) << prefix | (key & ((std::uint64_t{1} << 56) - 1)) >> (2 * kLevels - prefix));
+    return static_cast<std::size_t>((key >> index_bits) << prefix |
+                                    (key & ((std::uint64_t{1} << index_bits) - 1)) >> (index_bits - prefix));
   };
   std::vector<Keyed> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const auto& p = points[i].first;
       const int early = std::min(std::countl_zero(mix(i)) / 2, rounds);
-      keyed[i] = {static_cast<std::uint64_t>(rounds - early) << 56 | hilbert_index_2(qx(p.x()), qy(p.y())),
+      keyed[i] = {static_cast<std::uint64_t>(rounds - early) << index_bits | curve_index(points[i].first),
                   static_cast<std::uint32_t>(i)};
     }
   });
@@ -123,11 +181,16 @@ void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points
       if (start[b + 1] - start[b] > 1) std::sort(sorted.begin() + start[b], sorted.begin() + start[b + 1]);
   });
 
-  std::vector<std::pair<CGAL::Epick::Point_2, int>> out(n);
+  std::vector<std::pair<Point, int>> out(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) out[i] = points[sorted[i].row];
   });
   points.swap(out);
 }
+
+}  // namespace
+
+void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points) { sort_by_keys<2>(points); }
+void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_3, int>>& points) { sort_by_keys<3>(points); }
 
 }  // namespace scanstation
