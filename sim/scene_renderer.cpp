@@ -12,7 +12,10 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace scanstation::sim {
 
@@ -94,6 +97,46 @@ struct SceneRenderer::Impl {
   Eigen::MatrixX3d face_normals;
   RTCDevice device = nullptr;
   RTCScene rtc_scene = nullptr;
+
+  // The station-frame ray through every pixel, per camera: a camera never
+  // moves during a scan (the platter turns), and each pixel's ray takes a
+  // fixed-point iteration to undistort, so a camera's rays are computed
+  // once. A few cameras are kept (a stereo rig has two).
+  struct CameraRays {
+    PinholeCamera camera;
+    std::shared_ptr<const std::vector<Eigen::Vector3d>> rays;
+  };
+  mutable std::mutex rays_mutex;
+  mutable std::vector<CameraRays> known_rays;
+
+  static bool same_rays(const PinholeCamera& a, const PinholeCamera& b) {
+    const auto& p = a.distortion;
+    const auto& q = b.distortion;
+    return a.width == b.width && a.height == b.height && a.fx == b.fx && a.fy == b.fy && a.cx == b.cx &&
+           a.cy == b.cy && p.k1 == q.k1 && p.k2 == q.k2 && p.k3 == q.k3 && p.p1 == q.p1 && p.p2 == q.p2 &&
+           a.rotation == b.rotation;
+  }
+
+  std::shared_ptr<const std::vector<Eigen::Vector3d>> rays_of(const PinholeCamera& camera) const {
+    {
+      const std::lock_guard lock(rays_mutex);
+      for (const CameraRays& known : known_rays)
+        if (same_rays(known.camera, camera)) return known.rays;
+    }
+    // Computed unlocked (a render may run inside another's parallel loop);
+    // two threads may both compute one camera's rays, to the same values.
+    auto rays = std::make_shared<std::vector<Eigen::Vector3d>>(static_cast<std::size_t>(camera.width) *
+                                                               static_cast<std::size_t>(camera.height));
+    tbb::parallel_for(0, camera.height, [&](int r) {
+      for (int c = 0; c < camera.width; ++c)
+        (*rays)[static_cast<std::size_t>(r) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(c)] =
+            camera.ray_direction({c, r});
+    });
+    const std::lock_guard lock(rays_mutex);
+    if (known_rays.size() == 4) known_rays.erase(known_rays.begin());
+    known_rays.push_back({camera, rays});
+    return rays;
+  }
 
   explicit Impl(Scene s) : scene(std::move(s)) {
     const auto& V = scene.object.vertices.positions;
@@ -212,10 +255,13 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
   const Eigen::Vector3d projector_origin = scene.projector ? to_object * scene.projector->optics.centre() : eye;
   const double scale = std::max(1.0, (eye.norm()));
   const double epsilon = 1e-5 * scale;
+  const Eigen::Matrix3d to_station = turntable_rotation(turntable_angle);
+  const auto rays = impl_->rays_of(camera);
 
   tbb::parallel_for(0, rows, [&](int r) {
     for (int c = 0; c < cols; ++c) {
-      const Eigen::Vector3d direction = to_object * camera.ray_direction({c, r});
+      const Eigen::Vector3d direction =
+          to_object * (*rays)[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c)];
       auto [face, t] = impl_->intersect_object(eye, direction);
       Eigen::Vector3d normal;
       const Material* material = &scene.object_material;
@@ -248,8 +294,7 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
       const Eigen::Vector3d p = eye + t * direction;
       view.truth.kind.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(kind);
       view.truth.points.at<cv::Vec3d>(r, c) = {p.x(), p.y(), p.z()};
-      view.truth.depth.at<double>(r, c) = (camera.rotation * (turntable_rotation(turntable_angle) * p) +
-                                           camera.translation).z();
+      view.truth.depth.at<double>(r, c) = (camera.rotation * (to_station * p) + camera.translation).z();
       const Eigen::Vector3d to_eye = -direction;
       const bool lit = !impl_->occluded(p, p + light * 4.0 * scale, epsilon);
       view.unlit.at<float>(r, c) = static_cast<float>(
@@ -267,7 +312,7 @@ RenderedView SceneRenderer::cast(const PinholeCamera& camera, double turntable_a
       if (scene.projector) {
         // The projector's light: the pattern cell the point sees from the
         // projector, unless the object shadows it.
-        const auto cell = scene.projector->optics.project(turntable_rotation(turntable_angle) * p);
+        const auto cell = scene.projector->optics.project(to_station * p);
         if (!cell) continue;
         const int u = static_cast<int>(std::lround(cell->x())), v = static_cast<int>(std::lround(cell->y()));
         if (u < 0 || v < 0 || u >= impl_->dot_pattern.cols || v >= impl_->dot_pattern.rows ||

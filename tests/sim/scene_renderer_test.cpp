@@ -72,6 +72,33 @@ TEST(SceneRenderer, GroundTruthPointsLieOnTheMeshAndProjectToTheirPixel) {
   EXPECT_GT(checked, 200);
 }
 
+// One renderer serves several cameras (a stereo rig has two) and keeps each
+// camera's pixel rays: a view is the same bytes whichever cameras it cast
+// for before, and a camera that differs in any lens or pose parameter gets
+// its own rays.
+TEST(SceneRenderer, EachCameraGetsItsOwnRaysWhateverWasCastBefore) {
+  Fixture f;
+  PinholeCamera turned = f.rig.camera, distorted = f.rig.camera, shifted = f.rig.camera;
+  turned.rotation = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY()).toRotationMatrix() * turned.rotation;
+  distorted.distortion.k1 = -0.2;
+  shifted.cx += 7.0;
+  const auto same = [](const RenderedView& a, const RenderedView& b) {
+    return cv::norm(a.truth.depth, b.truth.depth, cv::NORM_INF) == 0.0 && cv::norm(a.unlit, b.unlit, cv::NORM_INF) == 0.0;
+  };
+  std::vector<RenderedView> first;
+  for (const PinholeCamera* camera : {&f.rig.camera, &turned, &distorted, &shifted}) first.push_back(f.renderer.cast(*camera, 0.4));
+  for (std::size_t a = 0; a < first.size(); ++a)
+    for (std::size_t b = a + 1; b < first.size(); ++b) EXPECT_FALSE(same(first[a], first[b])) << a << " " << b;
+  std::size_t k = 0;
+  for (const PinholeCamera* camera : {&shifted, &distorted, &turned, &f.rig.camera}) {
+    Fixture fresh;
+    const RenderedView again = f.renderer.cast(*camera, 0.4), alone = fresh.renderer.cast(*camera, 0.4);
+    EXPECT_TRUE(same(again, alone)) << k;
+    EXPECT_TRUE(same(again, first[3 - k])) << k;
+    ++k;
+  }
+}
+
 TEST(SceneRenderer, SphereSilhouetteMatchesTheAnalyticProjection) {
   TurntableLaserRig rig = turntable_laser_rig(2 * radius, 60.0, 320, 240);
   SceneRenderer renderer{turntable_scene(sphere_object(6), rig, 60.0)};
