@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 #include <opencv2/imgproc.hpp>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -153,7 +154,11 @@ struct SceneRenderer::Impl {
     scene.light_direction.normalize();
     if (scene.projector) dot_pattern = random_dots(*scene.projector);
 
-    device = rtcNewDevice("threads=1");
+    // No thread count for the device: Embree would apply it to all of the
+    // process's TBB work (a tbb::global_control), and "threads=1" left the
+    // whole station flow on one core. The BVH is built on one thread
+    // instead (its own arena below), so it is the same on any machine.
+    device = rtcNewDevice(nullptr);
     if (!device) throw SolverError("scene renderer: Embree could not create a device");
     rtc_scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(rtc_scene, RTC_BUILD_QUALITY_HIGH);
@@ -173,7 +178,7 @@ struct SceneRenderer::Impl {
       rtcAttachGeometry(rtc_scene, geometry);
       rtcReleaseGeometry(geometry);
     }
-    rtcCommitScene(rtc_scene);
+    tbb::task_arena(1).execute([&] { rtcCommitScene(rtc_scene); });
   }
 
   ~Impl() {
