@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include <opencv2/imgproc.hpp>
+#include <tbb/global_control.h>
 
 namespace scanstation::sim {
 namespace {
@@ -97,6 +98,20 @@ TEST(SceneRenderer, EachCameraGetsItsOwnRaysWhateverWasCastBefore) {
     EXPECT_TRUE(same(again, first[3 - k])) << k;
     ++k;
   }
+}
+
+// Embree applies a device's thread count to the whole process (a TBB
+// global_control): a renderer must leave the rest of the program's
+// parallel work its cores.
+TEST(SceneRenderer, LeavesTheProcessItsThreads) {
+  const auto allowed = [] { return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism); };
+  const std::size_t before = allowed();
+  {
+    Fixture f;
+    f.renderer.cast(f.rig.camera, 0.1);
+    EXPECT_EQ(allowed(), before);
+  }
+  EXPECT_EQ(allowed(), before);
 }
 
 TEST(SceneRenderer, SphereSilhouetteMatchesTheAnalyticProjection) {
