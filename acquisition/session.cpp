@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <sys/stat.h>
@@ -429,15 +430,25 @@ void SessionRecorder::record(const CapturedStep& step) {
   json frames = json::array();
   const std::vector<int> png_options{cv::IMWRITE_PNG_COMPRESSION, 1};
   const bool stereo = manifest_.rig == "stereo";
-  for (const CapturedFrame& frame : step.frames) {
-    const std::string file =
-        stereo ? stereo_frame_file_name(step.step, frame.camera, frame.projector) : frame_file_name(step.step, frame.laser);
-    std::vector<unsigned char> png;
-    if (!cv::imencode(".png", frame.frame.image, png, png_options))
-      throw IoError("cannot encode " + (folder_ / file).string() + " as PNG");
-    io::write_file_atomically(folder_ / file, {reinterpret_cast<const char*>(png.data()), png.size()},
+  const auto file_of = [&](const CapturedFrame& frame) {
+    return stereo ? stereo_frame_file_name(step.step, frame.camera, frame.projector) : frame_file_name(step.step, frame.laser);
+  };
+  // The step's frames compressed side by side (deflate is most of recording
+  // a step), then written in order.
+  std::vector<std::vector<unsigned char>> png(step.frames.size());
+  std::vector<char> encoded(step.frames.size(), 0);
+  cv::parallel_for_(cv::Range(0, static_cast<int>(step.frames.size())), [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      encoded[i] = cv::imencode(".png", step.frames[i].frame.image, png[i], png_options);
+    }
+  });
+  for (std::size_t k = 0; k < step.frames.size(); ++k) {
+    const std::string file = file_of(step.frames[k]);
+    if (!encoded[k]) throw IoError("cannot encode " + (folder_ / file).string() + " as PNG");
+    io::write_file_atomically(folder_ / file, {reinterpret_cast<const char*>(png[k].data()), png[k].size()},
                               io::Overwrite::replace);
-    frames.push_back(frame_json(frame, file, stereo));
+    frames.push_back(frame_json(step.frames[k], file, stereo));
   }
   append({{"event", "step"},
           {"step", step.step},

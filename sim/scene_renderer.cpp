@@ -49,11 +49,11 @@ double blinn_phong(const Material& m, const Eigen::Vector3d& normal, const Eigen
 // about a pixel, rescaled to unit variance), never negative.
 cv::Mat speckle_field(int rows, int cols, double contrast, std::uint64_t seed) {
   cv::Mat field(rows, cols, CV_32F);
-  for (int r = 0; r < rows; ++r) {
+  tbb::parallel_for(0, rows, [&](int r) {  // each row its own stream: the same field on any number of threads
     Random random(seed ^ (0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(r + 1)));
     auto* row = field.ptr<float>(r);
     for (int c = 0; c < cols; ++c) row[c] = static_cast<float>(random.normal());
-  }
+  });
   constexpr double grain = 0.8;
   cv::GaussianBlur(field, field, cv::Size(0, 0), grain);
   // Variance of unit white noise after a Gaussian blur of σ: 1 / (4π σ²).
