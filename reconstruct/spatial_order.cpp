@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace scanstation {
 
@@ -54,31 +55,6 @@ struct Quantizer {
   }
 };
 
-// The box of the points, in halves so that its extent cannot overflow, and
-// the grid over it, `levels` bits a side.
-template <int D, typename Point>
-Quantizer grid_over(const std::vector<std::pair<Point, int>>& points, int levels) {
-  Quantizer q{};
-  double high[3];
-  for (int k = 0; k < D; ++k) {
-    q.low[k] = std::numeric_limits<double>::infinity();
-    high[k] = -q.low[k];
-  }
-  for (const auto& [p, row] : points)
-    for (int k = 0; k < D; ++k) {
-      q.low[k] = std::min(q.low[k], p[k] * 0.5);
-      high[k] = std::max(high[k], p[k] * 0.5);
-    }
-  double extent = 0.0;
-  for (int k = 0; k < D; ++k) extent = std::max(extent, high[k] - q.low[k]);
-  const bool spread = extent > 0.0 && std::isfinite(extent);
-  const int shift = spread ? levels - 1 - std::ilogb(extent) : 0;
-  q.first = std::ldexp(spread ? 1.0 : 0.0, shift / 2);
-  q.second = std::ldexp(1.0, shift - shift / 2);
-  q.top = std::ldexp(1.0, levels) - 1.0;
-  return q;
-}
-
 // Spreads the low 21 bits of v to every third bit.
 std::uint64_t spread_3(std::uint64_t v) {
   v &= 0x1FFFFFu;
@@ -91,10 +67,38 @@ std::uint64_t spread_3(std::uint64_t v) {
 }
 
 struct Keyed {
-  std::uint64_t key;  // round in the top byte, Hilbert index below
+  std::uint64_t key;  // round in the top bits, curve index below
   std::uint32_t row;
   bool operator<(const Keyed& o) const { return key != o.key ? key < o.key : row < o.row; }
 };
+
+// The box of some of the points, in halves so that its extent cannot
+// overflow, and the grid over it, `levels` bits a side; `spread` is false
+// when they are all one point.
+template <int D, typename Point>
+Quantizer grid_over(const std::vector<std::pair<Point, int>>& points, std::span<const Keyed> items, int levels,
+                    bool& spread) {
+  Quantizer q{};
+  double high[3];
+  for (int k = 0; k < D; ++k) {
+    q.low[k] = std::numeric_limits<double>::infinity();
+    high[k] = -q.low[k];
+  }
+  for (const Keyed& item : items)
+    for (int k = 0; k < D; ++k) {
+      const double half = points[item.row].first[k] * 0.5;
+      q.low[k] = std::min(q.low[k], half);
+      high[k] = std::max(high[k], half);
+    }
+  double extent = 0.0;
+  for (int k = 0; k < D; ++k) extent = std::max(extent, high[k] - q.low[k]);
+  spread = extent > 0.0 && std::isfinite(extent);
+  const int shift = spread ? levels - 1 - std::ilogb(extent) : 0;
+  q.first = std::ldexp(spread ? 1.0 : 0.0, shift / 2);
+  q.second = std::ldexp(1.0, shift - shift / 2);
+  q.top = std::ldexp(1.0, levels) - 1.0;
+  return q;
+}
 
 }  // namespace
 
@@ -135,62 +139,114 @@ std::uint64_t hilbert_index_3(std::uint32_t x, std::uint32_t y, std::uint32_t z)
 
 namespace {
 
-template <int D, typename Point>
-void sort_by_keys(std::vector<std::pair<Point, int>>& points) {
-  constexpr int levels = D == 2 ? kLevels2 : kLevels3, index_bits = D * levels;
-  const std::size_t n = points.size();
-  if (n < 2) return;
-  const Quantizer grid = grid_over<D>(points, levels);
-  const auto curve_index = [&](const Point& p) {
-    if constexpr (D == 2) {
-      return hilbert_index_2(grid(0, p.x()), grid(1, p.y()));
-    } else {
-      return hilbert_index_3(grid(0, p.x()), grid(1, p.y()), grid(2, p.z()));
-    }
-  };
+// Below this many items a range is sorted by std::sort alone; more points
+// than kCrowd in one grid cell are ordered again on a grid over their own
+// box, up to kRefinements times (a far outlier squeezes the rest of a scan
+// into a few cells of the first grid).
+constexpr std::size_t kSmallRange = 4096, kCrowd = 32;
+constexpr int kRefinements = 4;
 
-  // BRIO rounds: P(round ≥ j from the last) = 4^-j, from pairs of leading
-  // zero bits of a hash, up to the round of at most 16 points.
-  int rounds = 0;
-  while ((n >> (2 * rounds)) > 16) ++rounds;
-  const int prefix = std::max(0, static_cast<int>(std::bit_width(n)) - 4);  // curve bits of a bucket
-  const auto bucket_of = [&](std::uint64_t key) {
-    return static_cast<std::size_t>((key >> index_bits) << prefix |
-                                    (key & ((std::uint64_t{1} << index_bits) - 1)) >> (index_bits - prefix));
-  };
-  std::vector<Keyed> keyed(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const int early = std::min(std::countl_zero(mix(i)) / 2, rounds);
-      keyed[i] = {static_cast<std::uint64_t>(rounds - early) << index_bits | curve_index(points[i].first),
+template <int D, typename Point>
+class KeySort {
+ public:
+  static constexpr int kLevels = D == 2 ? kLevels2 : kLevels3, kIndexBits = D * kLevels;
+
+  explicit KeySort(std::vector<std::pair<Point, int>>& points) : points_(points) {}
+
+  void run() {
+    const std::size_t n = points_.size();
+    if (n < 2) return;
+    // BRIO rounds: P(round ≥ j from the last) = 4^-j, from pairs of leading
+    // zero bits of a hash, up to the round of at most 16 points.
+    int rounds = 0;
+    while ((n >> (2 * rounds)) > 16) ++rounds;
+    std::vector<Keyed> items(n);
+    for_range(n, [&](std::size_t i) {
+      items[i] = {static_cast<std::uint64_t>(rounds - std::min(std::countl_zero(mix(i)) / 2, rounds)) << kIndexBits,
                   static_cast<std::uint32_t>(i)};
+    });
+    order(items, 0);
+    std::vector<std::pair<Point, int>> out(n);
+    for_range(n, [&](std::size_t i) { out[i] = points_[items[i].row]; });
+    points_.swap(out);
+  }
+
+ private:
+  template <typename Body>
+  static void for_range(std::size_t n, Body&& body) {
+    if (n < kSmallRange) {
+      for (std::size_t i = 0; i < n; ++i) body(i);
+      return;
     }
-  });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
+    });
+  }
+
+  // Sorts the items by round, then along the curve of a grid over their
+  // own box; runs of more than kCrowd items in one cell are ordered again.
+  void order(std::span<Keyed> items, int depth) {
+    bool spread = false;
+    const Quantizer grid = grid_over<D>(points_, std::span<const Keyed>(items), kLevels, spread);
+    if (!spread) return;  // one point: the rows' order stays
+    for_range(items.size(), [&](std::size_t i) {
+      const Point& p = points_[items[i].row].first;
+      std::uint64_t index;
+      if constexpr (D == 2) {
+        index = hilbert_index_2(grid(0, p.x()), grid(1, p.y()));
+      } else {
+        index = hilbert_index_3(grid(0, p.x()), grid(1, p.y()), grid(2, p.z()));
+      }
+      items[i].key = (items[i].key >> kIndexBits << kIndexBits) | index;
+    });
+    sort(items);
+    if (depth == kRefinements) return;
+    for (std::size_t first = 0; first < items.size();) {
+      std::size_t last = first + 1;
+      while (last < items.size() && items[last].key == items[first].key) ++last;
+      if (last - first > kCrowd) order(items.subspan(first, last - first), depth + 1);
+      first = last;
+    }
+  }
 
   // One counting pass by the top of the key, then each bucket sorted.
-  std::vector<std::uint32_t> start(((static_cast<std::size_t>(rounds) + 1) << prefix) + 1, 0);
-  for (const Keyed& k : keyed) ++start[bucket_of(k.key) + 1];
-  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  std::vector<Keyed> sorted(n);
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (const Keyed& k : keyed) sorted[next[bucket_of(k.key)]++] = k;
+  static void sort(std::span<Keyed> items) {
+    const std::size_t n = items.size();
+    if (n < kSmallRange) {
+      std::sort(items.begin(), items.end());
+      return;
+    }
+    std::uint64_t low_round = items[0].key >> kIndexBits, high_round = low_round;  // the rounds in this range
+    for (const Keyed& k : items) {
+      low_round = std::min(low_round, k.key >> kIndexBits);
+      high_round = std::max(high_round, k.key >> kIndexBits);
+    }
+    const int prefix = std::max(0, static_cast<int>(std::bit_width(n)) - 4);  // curve bits of a bucket
+    const auto bucket_of = [&](std::uint64_t key) {
+      return static_cast<std::size_t>(((key >> kIndexBits) - low_round) << prefix |
+                                      (key & ((std::uint64_t{1} << kIndexBits) - 1)) >> (kIndexBits - prefix));
+    };
+    std::vector<std::uint32_t> start(((high_round - low_round + 1) << prefix) + 1, 0);
+    for (const Keyed& k : items) ++start[bucket_of(k.key) + 1];
+    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+    std::vector<Keyed> sorted(n);
+    {
+      std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+      for (const Keyed& k : items) sorted[next[bucket_of(k.key)]++] = k;
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, start.size() - 1, 256), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t b = range.begin(); b != range.end(); ++b)
+        if (start[b + 1] - start[b] > 1) std::sort(sorted.begin() + start[b], sorted.begin() + start[b + 1]);
+    });
+    std::copy(sorted.begin(), sorted.end(), items.begin());
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, start.size() - 1, 256), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t b = range.begin(); b != range.end(); ++b)
-      if (start[b + 1] - start[b] > 1) std::sort(sorted.begin() + start[b], sorted.begin() + start[b + 1]);
-  });
 
-  std::vector<std::pair<Point, int>> out(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) out[i] = points[sorted[i].row];
-  });
-  points.swap(out);
-}
+  std::vector<std::pair<Point, int>>& points_;
+};
 
 }  // namespace
 
-void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points) { sort_by_keys<2>(points); }
-void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_3, int>>& points) { sort_by_keys<3>(points); }
+void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_2, int>>& points) { KeySort<2, CGAL::Epick::Point_2>(points).run(); }
+void brio_hilbert_sort(std::vector<std::pair<CGAL::Epick::Point_3, int>>& points) { KeySort<3, CGAL::Epick::Point_3>(points).run(); }
 
 }  // namespace scanstation

@@ -24,10 +24,12 @@ std::uint64_t hilbert_index_3(std::uint32_t x, std::uint32_t y, std::uint32_t z)
 /// last round holds three quarters of the points, each earlier round a
 /// quarter of the round after it, down to 16 points, and each round follows
 /// a Hilbert curve. The curve is that of a square (cubic) grid over the
-/// points' bounding box, 2^28 (3D: 2^19) cells a side, and the rounds are
-/// drawn by a hash of the position in `points`, so the order is
-/// deterministic and the same on any number of threads. Points in one grid
-/// cell keep their order.
+/// points' bounding box, 2^28 (3D: 2^19) cells a side; more than 32 points
+/// of one round in one cell (a far outlier squeezes the rest into a few
+/// cells) are ordered again on a grid over their own box, up to 4 times,
+/// and equal points keep their order. The rounds are drawn by a hash of
+/// the position in `points`, so the order is deterministic and the same on
+/// any number of threads.
 ///
 /// CGAL's median policy cuts at medians instead of grid lines: the keys
 /// here are computed and sorted on all cores in a few passes, where the

@@ -143,6 +143,38 @@ TEST(BrioHilbertSort, PowerOfTwoScalesAndRepeatsKeepTheOrder) {
   for (int i = 0; i < n; ++i) ASSERT_EQ(again[static_cast<std::size_t>(i)].second, reference[static_cast<std::size_t>(i)].second);
 }
 
+// One far outlier squeezes the rest of the points into a few cells of the
+// grid over the whole box; those cells are ordered again on grids of their
+// own, so consecutive points of the last round stay close (in input order,
+// random here, they would lie half the cluster apart on average).
+template <typename Point>
+double mean_step_in_last_round(std::vector<std::pair<Point, int>> points) {
+  brio_hilbert_sort(points);
+  double sum = 0;
+  std::size_t steps = 0;
+  for (std::size_t i = points.size() / 4 + 1; i < points.size(); ++i) {
+    const auto& a = points[i - 1].first;
+    const auto& b = points[i].first;
+    if (a.x() > 1e3 || b.x() > 1e3) continue;  // the outlier
+    sum += std::sqrt(CGAL::squared_distance(a, b));
+    ++steps;
+  }
+  return sum / static_cast<double>(steps);
+}
+
+TEST(BrioHilbertSort, AFarOutlierLeavesTheClusterInSpatialOrder) {
+  Random random(21);
+  std::vector<std::pair<CGAL::Epick::Point_3, int>> cloud;
+  for (int i = 0; i < 20000; ++i)
+    cloud.push_back({CGAL::Epick::Point_3(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)), i});
+  cloud.push_back({CGAL::Epick::Point_3(1e7, 0, 0), 20000});
+  EXPECT_LT(mean_step_in_last_round(cloud), 0.15);  // the cluster's spacing is about 0.07; random order: 1.3
+  std::vector<std::pair<Point, int>> flat;
+  for (int i = 0; i < 20000; ++i) flat.push_back({Point(random.uniform(-1, 1) * 1e-9, random.uniform(-1, 1) * 1e-9), i});
+  flat.push_back({Point(1e7, 0), 20000});
+  EXPECT_LT(mean_step_in_last_round(flat), 1e-10);  // spacing about 1.4e-11; random order: 1.0e-9
+}
+
 TEST(BrioHilbertSort, EqualPointsAndNaNAreOrderedWithoutFuss) {
   std::vector<std::pair<Point, int>> same;
   for (int i = 0; i < 1000; ++i) same.push_back({Point(2.5, -1), i});
