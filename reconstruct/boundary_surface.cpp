@@ -12,15 +12,31 @@ namespace {
 Eigen::AlignedBox3d bounds(const Eigen::MatrixX3d& P) {
   return Eigen::AlignedBox3d(P.colwise().minCoeff().transpose(), P.colwise().maxCoeff().transpose());
 }
-// About two points per grid cell on a surface-like cloud.
-double cell_size(const Eigen::MatrixX3d& P) {
-  const Eigen::Vector3d extent = (P.colwise().maxCoeff() - P.colwise().minCoeff()).transpose();
-  const double area = 2.0 * (extent.x() * extent.y() + extent.y() * extent.z() + extent.z() * extent.x());
-  return std::max(std::sqrt(2.0 * area / static_cast<double>(std::max<Eigen::Index>(P.rows(), 1))), 1e-300);
+// About two points per grid cell: a closed surface through n points has
+// about 2n triangles, so a cell of 2·sqrt(a) for the median triangle area a
+// holds two. The median, not the box: a far outlier makes the box's area
+// (the former measure) millions of times the surface's, and every query then
+// met every face. Without triangles, the box's surface area stands in.
+double cell_size(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces) {
+  if (faces.rows() == 0) {
+    const Eigen::Vector3d extent = (P.colwise().maxCoeff() - P.colwise().minCoeff()).transpose();
+    const double area = 2.0 * (extent.x() * extent.y() + extent.y() * extent.z() + extent.z() * extent.x());
+    return std::max(std::sqrt(2.0 * area / static_cast<double>(std::max<Eigen::Index>(P.rows(), 1))), 1e-300);
+  }
+  std::vector<double> area(static_cast<std::size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::Vector3d a = P.row(faces(f, 0)), b = P.row(faces(f, 1)), c = P.row(faces(f, 2));
+    area[static_cast<std::size_t>(f)] = 0.5 * (b - a).cross(c - a).norm();
+  }
+  const auto middle = area.begin() + static_cast<std::ptrdiff_t>(area.size() / 2);
+  std::nth_element(area.begin(), middle, area.end());
+  return std::max(2.0 * std::sqrt(*middle), 1e-300);
 }
 }  // namespace
 
-BoxGrid surface_grid(const Eigen::MatrixX3d& P) { return BoxGrid(bounds(P), cell_size(P)); }
+BoxGrid surface_grid(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces) {
+  return BoxGrid(bounds(P), cell_size(P, faces));
+}
 
 PointTree::PointTree(const Eigen::MatrixX3d& P) {
   order_.resize(static_cast<std::size_t>(P.rows()));
@@ -54,7 +70,7 @@ void PointTree::build(int node, int begin, int end) {
 
 BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary)
     : P_(P),
-      faces_grid_(surface_grid(P)),
+      faces_grid_(surface_grid(P, boundary)),
       faces_at_(static_cast<std::size_t>(P.rows())),
       on_boundary_(static_cast<std::size_t>(P.rows()), 0) {
   cgal_.reserve(static_cast<std::size_t>(P.rows()));

@@ -36,7 +36,10 @@ class BoxGrid {
 
   void insert(int id, const Eigen::AlignedBox3d& box) {
     const int l = level_of(box);
-    level(l)[key(index(l, box.min()))].push_back(Entry(box, id));
+    const Eigen::Array3i i = index(l, box.min());
+    Cells& cells = level(l);
+    cells[key(i)].push_back(Entry(box, id));
+    cells.occupy(i);
   }
   void erase(int id, const Eigen::AlignedBox3d& box) {
     const int l = level_of(box);
@@ -64,15 +67,21 @@ class BoxGrid {
       const auto& cells = levels_[static_cast<std::size_t>(l)];
       if (cells.empty()) continue;
       // A box is filed under the cell of its minimum corner and reaches at
-      // most one cell size beyond it.
+      // most one cell size beyond it. The cells probed are those of the
+      // region within the level's occupied cells: a region reaching a far
+      // outlier spans millions of cells of the fine levels, and without the
+      // clip every query there visited every face.
       Eigen::AlignedBox3d grown = region;
       grown.min().array() -= size(l);
-      if (span(l, grown) > static_cast<double>(cells.size())) {
+      const Eigen::Array3i lo = index(l, grown.min()).max(cells.occupied_min()),
+                           hi = index(l, grown.max()).min(cells.occupied_max());
+      if ((lo > hi).any()) continue;
+      if (((hi - lo).cast<double>() + 1.0).prod() > static_cast<double>(cells.size())) {
         for (const auto& entries : cells.lists())
           for (const Entry& e : entries)
             if (!call(e)) return false;
       } else {
-        const bool completed = for_cells(l, grown, [&](std::uint64_t k) {
+        const bool completed = for_cells(lo, hi, [&](std::uint64_t k) {
           if (const std::vector<Entry>* entries = cells.find(k))
             for (const Entry& e : *entries)
               if (!call(e)) return false;
@@ -124,10 +133,19 @@ class BoxGrid {
       index_[k] = static_cast<std::uint32_t>(lists_.size());
       return lists_.emplace_back();
     }
+    // The cell indices ever filed under, as a box (it never shrinks).
+    void occupy(const Eigen::Array3i& i) {
+      low_ = low_.min(i);
+      high_ = high_.max(i);
+    }
+    const Eigen::Array3i& occupied_min() const { return low_; }
+    const Eigen::Array3i& occupied_max() const { return high_; }
 
    private:
     U64Map<std::uint32_t> index_;  // list of each cell key
     std::vector<std::vector<Entry>> lists_;
+    Eigen::Array3i low_ = Eigen::Array3i::Constant(std::numeric_limits<int>::max());
+    Eigen::Array3i high_ = Eigen::Array3i::Constant(std::numeric_limits<int>::min());
   };
   double size(int l) const { return cell_ * static_cast<double>(std::uint64_t{1} << l); }
   Cells& level(int l) {
@@ -140,19 +158,15 @@ class BoxGrid {
     while (l < 40 && extent > size(l)) ++l;
     return l;
   }
-  Eigen::Array3i index(int l, const Eigen::Vector3d& x) const {
-    return ((x - origin_) / size(l)).array().floor().cast<int>();
-  }
-  double span(int l, const Eigen::AlignedBox3d& box) const {
-    return ((index(l, box.max()) - index(l, box.min())).cast<double>() + 1.0).prod();
+  Eigen::Array3i index(int l, const Eigen::Vector3d& x) const {  // clamped: a far corner stays an int
+    return ((x - origin_) / size(l)).array().floor().max(-1e9).min(1e9).cast<int>();
   }
   static std::uint64_t key(const Eigen::Array3i& i) {
     return (static_cast<std::uint64_t>(i.x() & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(i.y() & 0x1FFFFF) << 21) |
            static_cast<std::uint64_t>(i.z() & 0x1FFFFF);
   }
   template <typename F>
-  bool for_cells(int l, const Eigen::AlignedBox3d& box, F&& f) const {
-    const Eigen::Array3i lo = index(l, box.min()), hi = index(l, box.max());
+  static bool for_cells(const Eigen::Array3i& lo, const Eigen::Array3i& hi, F&& f) {
     for (int x = lo.x(); x <= hi.x(); ++x)
       for (int y = lo.y(); y <= hi.y(); ++y)
         for (int z = lo.z(); z <= hi.z(); ++z)
@@ -164,9 +178,10 @@ class BoxGrid {
   std::vector<Cells> levels_;
 };
 
-/// An empty grid over the bounding box of P, about two points per cell on a
-/// surface-like cloud (the one BoundarySurface files its faces in).
-BoxGrid surface_grid(const Eigen::MatrixX3d& P);
+/// An empty grid over the bounding box of P for the triangles `faces` (a
+/// closed surface through P), about two points per cell (the one
+/// BoundarySurface files its faces in).
+BoxGrid surface_grid(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces);
 
 // A static k-d tree over points, for "which points lie in this box": the
 // points never move while a surface is edited, and on non-uniform samplings

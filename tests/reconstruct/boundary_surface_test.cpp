@@ -101,3 +101,58 @@ TEST(BoundarySurface, PointInTetrahedronAgreesWithEveryPointTestedExactly) {
 
 }  // namespace
 }  // namespace scanstation
+
+namespace scanstation {
+namespace {
+
+// The grid's visit against every box tested: all boxes that meet a region
+// are reported, including regions reaching a far outlier, which span
+// millions of fine cells (the visit probes only the occupied ones there),
+// and boxes reported extra are those whose outward-rounded float copy meets
+// the region.
+TEST(BoxGrid, VisitReportsEveryBoxMeetingTheRegionAlsoTowardsAFarOutlier) {
+  sim::Random random(17);
+  const auto box_at = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    Eigen::AlignedBox3d box(a);
+    box.extend(b);
+    return box;
+  };
+  const auto random_point = [&] { return Eigen::Vector3d(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)); };
+  const Eigen::Vector3d outlier(1e6, 0.3, -0.2);
+  std::vector<Eigen::AlignedBox3d> boxes;
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Vector3d a = random_point();
+    const double size = std::pow(10.0, random.uniform(-3, 0));
+    boxes.push_back(box_at(a, a + size * random_point()));
+  }
+  for (int i = 0; i < 20; ++i) boxes.push_back(box_at(random_point(), outlier));  // spikes to the outlier
+  BoxGrid grid(box_at(Eigen::Vector3d::Constant(-2), outlier + Eigen::Vector3d::Ones()), 0.02);
+  for (std::size_t i = 0; i < boxes.size(); ++i) grid.insert(static_cast<int>(i), boxes[i]);
+  const auto rounded_meets = [](const Eigen::AlignedBox3d& box, const Eigen::AlignedBox3d& region) {
+    for (int k = 0; k < 3; ++k) {
+      const float lo = std::nextafter(static_cast<float>(box.min()[k]), -INFINITY);
+      const float hi = std::nextafter(static_cast<float>(box.max()[k]), INFINITY);
+      if (static_cast<double>(hi) < region.min()[k] || static_cast<double>(lo) > region.max()[k]) return false;
+    }
+    return true;
+  };
+  for (int q = 0; q < 400; ++q) {
+    const Eigen::Vector3d a = random_point();
+    const Eigen::AlignedBox3d region = q % 4 == 0 ? box_at(a, outlier + 0.1 * random_point())
+                                                  : box_at(a, a + std::pow(10.0, random.uniform(-3, 0)) * random_point());
+    std::vector<char> seen(boxes.size(), 0);
+    grid.visit(region, [&](int id) { ++seen[static_cast<std::size_t>(id)]; });
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      ASSERT_LE(seen[i], 1) << "box " << i << " reported twice, query " << q;
+      if (boxes[i].intersects(region)) {
+        ASSERT_EQ(seen[i], 1) << "box " << i << " missed, query " << q;
+      }
+      if (seen[i]) {
+        ASSERT_TRUE(rounded_meets(boxes[i], region)) << "box " << i << " reported, query " << q;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace scanstation
