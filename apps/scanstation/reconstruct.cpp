@@ -3,6 +3,7 @@
 #include "command.h"
 #include "core/describe.h"
 #include "core/errors.h"
+#include "core/far_points.h"
 #include "core/io/mesh_io.h"
 #include "core/io/index_list.h"
 #include "core/io/number_text.h"
@@ -43,6 +44,25 @@ nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Ei
           {"sight_line_cells", s.sight_line_cells},
           {"gap_cells", s.gap_cells},
           {"web_cells", s.web_cells}};
+}
+
+// The points the boundary reaches with a spike (core/far_points.h), as
+// input rows, with a line saying so: a stray reading far from the object
+// changes the faces around it, and outlier removal before reconstruction
+// is the cure (the station flow does it).
+std::vector<Eigen::Index> far_rows(const Eigen::MatrixXd& V, const Eigen::MatrixXi& cycles,
+                                   const std::vector<Eigen::Index>& source) {
+  std::vector<Eigen::Index> rows;
+  for (const int v : far_points(V, cycles)) rows.push_back(source[static_cast<std::size_t>(v)]);
+  std::sort(rows.begin(), rows.end());
+  if (!rows.empty()) {
+    std::printf("%zu point%s far from all others (nearest boundary neighbour over 100 times the median spacing; "
+                "input row%s %lld%s): the boundary spikes out to reach %s; remove outliers first\n",
+                rows.size(), rows.size() == 1 ? " lies" : "s lie", rows.size() == 1 ? "" : "s",
+                static_cast<long long>(rows.front()), rows.size() > 1 ? ", … (listed in the report)" : "",
+                rows.size() == 1 ? "it" : "them");
+  }
+  return rows;
 }
 
 class ReconstructCommand final : public Command {
@@ -171,6 +191,8 @@ class ReconstructCommand final : public Command {
       result["area"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.polygon.size()) + "-gon");
+      result["far_points"] = far_rows(r.points, Eigen::Map<const Eigen::RowVectorXi>(r.order.data(), Eigen::Index(r.order.size())),
+                                      r.source);
     } else {
       if (svg_) throw InvalidInput("--svg draws 2D results; the input has three coordinates");
       add_sight_lines(cloud.positions, context);
@@ -195,6 +217,7 @@ class ReconstructCommand final : public Command {
       result["volume"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.mesh.face_count()) + " triangles");
+      result["far_points"] = far_rows(r.mesh.vertices.positions, r.mesh.faces, r.source);
     }
   }
 

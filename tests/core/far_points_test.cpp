@@ -1,0 +1,63 @@
+#include "core/far_points.h"
+#include "sim/shapes.h"
+#include "test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace scanstation {
+namespace {
+
+TEST(FarPoints, NoneOnAnEvenSurfaceAndTheSpikeOnceAVertexFliesOff) {
+  const TriangleMesh sphere = sim::icosphere(4);
+  EXPECT_TRUE(far_points(sphere.vertices.positions, sphere.faces).empty());
+  Eigen::MatrixX3d spiked = sphere.vertices.positions;
+  spiked.row(77) *= 1000.0;  // its edges now ~1000 radii, the others ~0.08
+  EXPECT_EQ(far_points(spiked, sphere.faces), std::vector<int>({77}));
+  // A vertex a little off is far only for a factor below its own ratio,
+  // computed here the long way: every vertex's shortest edge from the
+  // faces, and their median.
+  spiked.row(77) = sphere.vertices.positions.row(77) * 1.5;
+  std::vector<double> shortest(static_cast<std::size_t>(spiked.rows()), INFINITY);
+  for (Eigen::Index f = 0; f < sphere.faces.rows(); ++f)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (i != j) {
+          const int a = sphere.faces(f, i), b = sphere.faces(f, j);
+          shortest[static_cast<std::size_t>(a)] = std::min(shortest[static_cast<std::size_t>(a)], (spiked.row(a) - spiked.row(b)).norm());
+        }
+  std::vector<double> sorted = shortest;
+  std::sort(sorted.begin(), sorted.end());
+  const double ratio = shortest[77] / sorted[sorted.size() / 2];
+  ASSERT_GT(ratio, 3.0);
+  EXPECT_TRUE(far_points(spiked, sphere.faces).empty());
+  EXPECT_TRUE(far_points(spiked, sphere.faces, ratio * 1.01).empty());
+  EXPECT_EQ(far_points(spiked, sphere.faces, ratio * 0.99), std::vector<int>({77}));
+}
+
+TEST(FarPoints, APolygonIsOneCycleOfItsVertices) {
+  constexpr int n = 60;
+  Eigen::MatrixX2d circle(n, 2);
+  for (int i = 0; i < n; ++i) circle.row(i) << std::cos(2 * std::numbers::pi * i / n), std::sin(2 * std::numbers::pi * i / n);
+  circle.row(40) << 500.0, 0.0;
+  Eigen::RowVectorXi order(n);
+  for (int i = 0; i < n; ++i) order(i) = i;
+  EXPECT_EQ(far_points(circle, order), std::vector<int>({40}));
+}
+
+TEST(FarPoints, DegenerateInputsGiveNone) {
+  Eigen::MatrixX3d same = Eigen::MatrixX3d::Ones(5, 3);
+  Eigen::MatrixXi faces(2, 3);
+  faces << 0, 1, 2, 2, 3, 4;
+  EXPECT_TRUE(far_points(same, faces).empty());  // every edge has length 0
+  EXPECT_TRUE(far_points(same, Eigen::MatrixXi(0, 3)).empty());
+  Eigen::MatrixX3d two(2, 3);
+  two << 0, 0, 0, 1e9, 0, 0;
+  Eigen::MatrixXi edge(1, 2);
+  edge << 0, 1;
+  EXPECT_TRUE(far_points(two, edge).empty());  // fewer than 3 points on edges: no median to speak of
+}
+
+}  // namespace
+}  // namespace scanstation
