@@ -3,7 +3,8 @@
 // triangles, against their floor measured in the same run: Steps 1–3 alone
 // (one cubic patch per triangle, `macro_patches`); the six-split also into a
 // surface reused across iterations (no fresh memory); and the G¹ verification
-// of the six-split surface (every shared patch edge sampled at 9 points).
+// of the six-split surface (every shared patch edge sampled at 9 points),
+// and the search for its shared patch edges.
 //
 //   build/bench/smoothing_bench [--benchmark_filter=SixSplit]
 //
@@ -17,6 +18,7 @@
 #include "sim/shapes.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/mesh_edges.h"
+#include "smoothing/patch_adjacency.h"
 #include "smoothing/g1_verification.h"
 #include "smoothing/six_split.h"
 #include "smoothing/tessellation.h"
@@ -145,6 +147,18 @@ void EdgeAdjacency(benchmark::State& state) {
   set_counters(state, in.mesh.face_count(), 2 * 3 * sizeof(int) * in.mesh.face_count());
 }
 
+// The shared patch edges of the six-split surface, found from the control
+// points (done by the verification and once more for the tessellation):
+// EdgeAdjacency above, the same pairing from the vertex numbers of the
+// macro mesh (six times fewer triangles), is its floor.
+void PatchEdges(benchmark::State& state) {
+  const Input& in = input(int(state.range(0)));
+  const BezierSurface surface = six_split(in.mesh.vertices.positions, in.mesh.faces, in.normals, in.edges);
+  for (auto _ : state) benchmark::DoNotOptimize(patch_adjacency(surface).pairs.data());
+  set_counters(state, in.mesh.face_count(), 0);
+  state.counters["patches"] = double(surface.patches.size());
+}
+
 void Tessellation(benchmark::State& state) {
   const Input& in = input(int(state.range(0)));
   const BezierSurface surface = six_split(in.mesh.vertices.positions, in.mesh.faces, in.normals, in.edges);
@@ -162,5 +176,6 @@ BENCHMARK(ThreeSplit<true>)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(TwoSplit)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(Verification)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(EdgeAdjacency)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
+BENCHMARK(PatchEdges)->DenseRange(5, 8)->Unit(benchmark::kMillisecond);
 BENCHMARK(Tessellation)->DenseRange(5, 6)->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) { return scanstation::bench::benchmark_main(argc, argv); }

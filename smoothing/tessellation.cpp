@@ -184,6 +184,9 @@ PatchLayout layout_of(const TessellationPlan& plan, std::size_t p) {
 void check_plan(const BezierSurface& surface, const TessellationPlan& plan) {
   if (plan.inner.size() != surface.patches.size() || plan.edge.size() != 3 * surface.patches.size())
     throw InvalidInput("a tessellation plan needs one density per patch and one per patch edge");
+  for (const PatchEdgePair& pair : plan.shared)
+    if (std::max(pair.patch_a, pair.patch_b) >= static_cast<int>(surface.patches.size()) || std::min(pair.patch_a, pair.patch_b) < 0)
+      throw InvalidInput("a tessellation plan's shared patch edge names a patch the surface does not have");
   for (const int n : plan.inner) check_density(n);
   for (std::size_t i = 0; i < plan.edge.size(); ++i)
     if (plan.edge[i] < plan.inner[i / 3])
@@ -239,7 +242,8 @@ StreamNumbering stream_numbering(const BezierSurface& surface, const Tessellatio
       if (inserted) numbering.corner_owner.emplace_back(int(p), k);
       numbering.corner[3 * p + std::size_t(k)] = it->second;
     }
-  for (const PatchEdgePair& pair : patch_adjacency(surface).pairs) {
+  const std::vector<PatchEdgePair> found = plan.shared.empty() ? patch_adjacency(surface).pairs : std::vector<PatchEdgePair>{};
+  for (const PatchEdgePair& pair : plan.shared.empty() ? found : plan.shared) {
     const int e = static_cast<int>(numbering.edge_owner.size());
     numbering.edge_owner.emplace_back(pair.patch_a, pair.edge_a);
     numbering.edge[3 * pair.patch_a + pair.edge_a] = e;
@@ -284,7 +288,7 @@ std::size_t TessellationPlan::face_count() const {
 
 TessellationPlan uniform_plan(const BezierSurface& surface, int density) {
   check_density(density);
-  return {std::vector<int>(surface.patches.size(), density), std::vector<int>(3 * surface.patches.size(), density)};
+  return {std::vector<int>(surface.patches.size(), density), std::vector<int>(3 * surface.patches.size(), density), {}};
 }
 
 TessellationPlan plan_from_densities(const BezierSurface& surface, std::vector<int> density) {
@@ -294,7 +298,8 @@ TessellationPlan plan_from_densities(const BezierSurface& surface, std::vector<i
   TessellationPlan plan;
   plan.edge.resize(3 * density.size());
   for (std::size_t i = 0; i < plan.edge.size(); ++i) plan.edge[i] = density[i / 3];
-  for (const PatchEdgePair& pair : patch_adjacency(surface).pairs) {
+  plan.shared = patch_adjacency(surface).pairs;
+  for (const PatchEdgePair& pair : plan.shared) {
     int& a = plan.edge[3 * std::size_t(pair.patch_a) + std::size_t(pair.edge_a)];
     int& b = plan.edge[3 * std::size_t(pair.patch_b) + std::size_t(pair.edge_b)];
     a = b = std::max(a, b);

@@ -6,6 +6,7 @@
 #include "core/io/file_access.h"
 #include "core/triangle_mesh.h"
 #include "smoothing/bezier_surface.h"
+#include "smoothing/patch_adjacency.h"
 
 #include <filesystem>
 #include <vector>
@@ -22,6 +23,10 @@ namespace scanstation {
 /// the edge (m = 3: a fan around the grid's one inner point).
 struct TessellationPlan {
   std::vector<int> inner, edge;
+  /// The shared patch edges (patch_adjacency) when the plan was made with
+  /// them (plan_from_densities), so that writing the plan does not look
+  /// for them again; empty: found when needed.
+  std::vector<PatchEdgePair> shared;
   std::size_t face_count() const;
 };
 

@@ -13,6 +13,9 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <vector>
 
 namespace scanstation {
@@ -116,6 +119,22 @@ TEST(Tessellation, MixedDensitiesStayWatertightStreamedOrNot) {
     expect_watertight(in_memory, plan.face_count());
     const std::filesystem::path path = dir / ("mixed" + std::to_string(round) + ".ply");
     write_tessellation_ply(surface, plan, path, io::Overwrite::refuse);
+    // The plan carries the shared patch edges; found again, they give the same file.
+    EXPECT_EQ(plan.shared.size(), patch_adjacency(surface).pairs.size());
+    TessellationPlan bare = plan;
+    bare.shared.clear();
+    const std::filesystem::path again = dir / ("again" + std::to_string(round) + ".ply");
+    write_tessellation_ply(surface, bare, again, io::Overwrite::refuse);
+    const auto bytes = [](const std::filesystem::path& file) {
+      std::ifstream in(file, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_EQ(bytes(path), bytes(again));
+    if (round == 0) {
+      TessellationPlan wrong = plan;
+      wrong.shared.push_back({0, 0, static_cast<int>(surface.patches.size()), 1});
+      EXPECT_THROW(write_tessellation_ply(surface, wrong, dir / "wrong.ply", io::Overwrite::refuse), InvalidInput);
+    }
     const TriangleMesh streamed = io::read_mesh(path);
     ASSERT_EQ(streamed.vertex_count(), in_memory.vertex_count());
     expect_watertight(streamed, plan.face_count());
@@ -160,9 +179,13 @@ TEST(Tessellation, AdaptivePatchesTakeTheSmallestDensityWithinTheTolerance) {
     one.patches.push_back(surface.patches[p]);
     const double deviation = tessellation_deviation(one, n);
     largest = std::max(largest, deviation);
-    if (n < 12) EXPECT_LE(deviation, tolerance) << p;
+    if (n < 12) {
+      EXPECT_LE(deviation, tolerance) << p;
+    }
     above += deviation > tolerance;
-    if (n > 1) EXPECT_GT(tessellation_deviation(one, n - 1), tolerance) << p;
+    if (n > 1) {
+      EXPECT_GT(tessellation_deviation(one, n - 1), tolerance) << p;
+    }
     for (int k = 0; k < 3; ++k) EXPECT_GE(chosen.plan.edge[3 * p + static_cast<std::size_t>(k)], n);
   }
   EXPECT_EQ(chosen.above, above);
