@@ -25,6 +25,7 @@ class UnionFind {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
   }
+  bool root(std::size_t x) const { return parent_[x] == x; }
   bool unite(std::size_t a, std::size_t b) {
     a = find(a), b = find(b);
     if (a == b) return false;
@@ -41,6 +42,7 @@ struct HalfEdge {
   int lo, hi;     // sorted endpoints
   int face;
   bool forward;   // the face traverses lo -> hi
+  signed char at; // the face's corner k at which the half-edge starts (F(face, k) → F(face, k + 1))
   bool operator<(const HalfEdge& o) const { return std::tie(lo, hi, face) < std::tie(o.lo, o.hi, o.face); }
 };
 
@@ -58,8 +60,16 @@ std::vector<T> sorted_by_key(const std::vector<T>& items, std::size_t keys, Key&
   std::vector<T> out(items.size());
   std::vector<std::size_t> next(start.begin(), start.end() - 1);
   for (const T& item : items) out[next[key(item)]++] = item;
-  for (std::size_t k = 0; k < keys; ++k)
-    std::sort(out.begin() + static_cast<std::ptrdiff_t>(start[k]), out.begin() + static_cast<std::ptrdiff_t>(start[k + 1]), less);
+  for (std::size_t k = 0; k < keys; ++k) {
+    const auto first = out.begin() + static_cast<std::ptrdiff_t>(start[k]);
+    const auto last = out.begin() + static_cast<std::ptrdiff_t>(start[k + 1]);
+    if (last - first > 16) {
+      std::sort(first, last, less);
+      continue;
+    }
+    for (auto i = first + (first != last); i < last; ++i)  // a few items: insertion sort
+      for (auto j = i; j != first && less(*j, *(j - 1)); --j) std::iter_swap(j, j - 1);
+  }
   return out;
 }
 
@@ -69,7 +79,7 @@ std::vector<HalfEdge> half_edges(const Eigen::MatrixX3i& F, std::size_t vertex_c
   for (int f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = F(f, k), b = F(f, (k + 1) % 3);
-      if (a != b) h.push_back({std::min(a, b), std::max(a, b), f, a < b});
+      if (a != b) h.push_back({std::min(a, b), std::max(a, b), f, a < b, static_cast<signed char>(k)});
     }
   std::vector<std::size_t> start;
   return sorted_by_key(
@@ -78,41 +88,54 @@ std::vector<HalfEdge> half_edges(const Eigen::MatrixX3i& F, std::size_t vertex_c
 }
 
 // Faces around each vertex must form a single fan (edge-connected through
-// edges at that vertex), else the vertex is non-manifold.
-std::size_t count_non_manifold_vertices(const Eigen::MatrixX3i& F, std::size_t vertex_count) {
-  struct Corner {
-    int vertex, other, face;  // the face has the edge vertex–other
+// edges at that vertex), else the vertex is non-manifold. The fans are the
+// parts of a union-find over the corners (3f + k): corners of one face at
+// one vertex are one, and the faces of an edge (v, w) join their corners at
+// v and at w (an edge (v, v) of faces that repeat v joins them at v).
+// `h` holds the half-edges sorted by edge (half_edges).
+std::size_t count_non_manifold_vertices(const Eigen::MatrixX3i& F, const std::vector<HalfEdge>& h,
+                                        std::size_t vertex_count) {
+  const std::size_t corners = 3 * static_cast<std::size_t>(F.rows());
+  UnionFind fans(corners);
+  const auto corner = [&](int f, int v) {
+    int k = 0;
+    while (F(f, k) != v) ++k;
+    return 3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(k);
   };
-  std::vector<Corner> corners;
-  corners.reserve(static_cast<std::size_t>(F.rows()) * 6);
+  std::vector<std::pair<int, int>> repeated;  // (v, face) for faces that repeat v
   for (int f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      corners.push_back({F(f, k), F(f, (k + 1) % 3), f});
-      corners.push_back({F(f, k), F(f, (k + 2) % 3), f});
+    for (int k = 0; k < 3; ++k)
+      for (int j = k + 1; j < 3; ++j)
+        if (F(f, k) == F(f, j)) {
+          fans.unite(3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(k),
+                     3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(j));
+          repeated.emplace_back(F(f, k), f);
+        }
+  std::sort(repeated.begin(), repeated.end());
+  for (std::size_t i = 1; i < repeated.size(); ++i)
+    if (repeated[i].first == repeated[i - 1].first)
+      fans.unite(corner(repeated[i].second, repeated[i].first), corner(repeated[i - 1].second, repeated[i].first));
+  // The corners of a half-edge's ends: it runs from corner `at` to the next.
+  const auto lo_corner = [](const HalfEdge& e) {
+    return 3 * static_cast<std::size_t>(e.face) + static_cast<std::size_t>(e.forward ? e.at : (e.at + 1) % 3);
+  };
+  const auto hi_corner = [](const HalfEdge& e) {
+    return 3 * static_cast<std::size_t>(e.face) + static_cast<std::size_t>(e.forward ? (e.at + 1) % 3 : e.at);
+  };
+  for (std::size_t i = 1; i < h.size(); ++i)
+    if (h[i].lo == h[i - 1].lo && h[i].hi == h[i - 1].hi) {
+      fans.unite(lo_corner(h[i]), lo_corner(h[i - 1]));
+      fans.unite(hi_corner(h[i]), hi_corner(h[i - 1]));
     }
-  std::vector<std::size_t> start;
-  // At each vertex by other vertex: corners sharing one share an edge at the vertex.
-  corners = sorted_by_key(
-      corners, vertex_count, [](const Corner& c) { return static_cast<std::size_t>(c.vertex); },
-      [](const Corner& a, const Corner& b) { return std::tie(a.other, a.face) < std::tie(b.other, b.face); }, start);
-  std::size_t count = 0;
-  std::vector<int> faces;
-  UnionFind fans;
-  for (std::size_t v = 0; v < vertex_count; ++v) {
-    if (start[v] == start[v + 1]) continue;
-    faces.clear();
-    for (std::size_t i = start[v]; i < start[v + 1]; ++i) faces.push_back(corners[i].face);
-    std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-    fans.reset(faces.size());
-    std::size_t groups = faces.size();
-    const auto local = [&](int f) { return static_cast<std::size_t>(std::lower_bound(faces.begin(), faces.end(), f) - faces.begin()); };
-    for (std::size_t i = start[v] + 1; i < start[v + 1]; ++i)
-      if (corners[i].other == corners[i - 1].other && fans.unite(local(corners[i].face), local(corners[i - 1].face)))
-        --groups;
-    if (groups > 1) ++count;
-  }
-  return count;
+  std::vector<unsigned char> count(vertex_count, 0);  // fans at each vertex, up to 2
+  std::size_t non_manifold = 0;
+  for (std::size_t c = 0; c < corners; ++c)
+    if (fans.root(c)) {
+      unsigned char& n = count[static_cast<std::size_t>(F(static_cast<Eigen::Index>(c / 3), static_cast<Eigen::Index>(c % 3)))];
+      non_manifold += n == 1;
+      n = static_cast<unsigned char>(std::min(2, n + 1));
+    }
+  return non_manifold;
 }
 
 // Propagates face orientations across manifold edges; false on a conflict
@@ -208,7 +231,7 @@ MeshTopology mesh_topology(const Eigen::MatrixX3i& F, Eigen::Index vertex_count)
   }
   const std::size_t boundary_vertex_count = static_cast<std::size_t>(std::count(on_boundary.begin(), on_boundary.end(), 1));
   t.boundary_loops = boundary_vertex_count - boundary_vertices_joined;
-  t.non_manifold_vertices = count_non_manifold_vertices(F, t.vertices);
+  t.non_manifold_vertices = count_non_manifold_vertices(F, h, t.vertices);
   t.euler_characteristic = static_cast<long long>(used_count) - static_cast<long long>(t.edges) + static_cast<long long>(t.faces);
 
   t.closed = t.faces > 0 && t.boundary_edges == 0 && t.non_manifold_edges == 0;
