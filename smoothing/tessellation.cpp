@@ -242,7 +242,8 @@ StreamNumbering stream_numbering(const BezierSurface& surface, const Tessellatio
       if (inserted) numbering.corner_owner.emplace_back(int(p), k);
       numbering.corner[3 * p + std::size_t(k)] = it->second;
     }
-  const std::vector<PatchEdgePair> found = plan.shared.empty() ? patch_adjacency(surface).pairs : std::vector<PatchEdgePair>{};
+  std::vector<PatchEdgePair> found;
+  if (plan.shared.empty()) found = patch_adjacency(surface).pairs;
   for (const PatchEdgePair& pair : plan.shared.empty() ? found : plan.shared) {
     const int e = static_cast<int>(numbering.edge_owner.size());
     numbering.edge_owner.emplace_back(pair.patch_a, pair.edge_a);

@@ -1,7 +1,6 @@
 #include "smoothing/patch_adjacency.h"
 
 #include "sim/random.h"
-#include "smoothing/six_split.h"
 #include "smoothing_test_meshes.h"
 
 #include <gtest/gtest.h>
@@ -60,14 +59,10 @@ void expect_same(const PatchAdjacency& a, const PatchAdjacency& b) {
   }
 }
 
-BezierSurface six_split_surface(const TriangleMesh& mesh) {
-  const test::SchemeInput in = test::scheme_input(mesh);
-  return six_split(mesh.vertices.positions, mesh.faces, in.N, in.edges);
-}
 
 TEST(PatchAdjacency, ClosedSurfaceEveryEdgePairedAsTheLongWay) {
   for (const std::uint64_t seed : {1u, 2u, 3u}) {
-    const BezierSurface surface = six_split_surface(test::bumpy_sphere(seed, 0.1));
+    const BezierSurface surface = test::six_split_surface(test::bumpy_sphere(seed, 0.1));
     const PatchAdjacency found = patch_adjacency(surface);
     EXPECT_EQ(found.unmatched, 0u) << seed;
     EXPECT_EQ(found.pairs.size(), 3 * surface.patches.size() / 2) << seed;
@@ -76,7 +71,7 @@ TEST(PatchAdjacency, ClosedSurfaceEveryEdgePairedAsTheLongWay) {
 }
 
 TEST(PatchAdjacency, OpenAndShuffledSurfaces) {
-  const BezierSurface closed = six_split_surface(test::bumpy_sphere(4, 0.1));
+  const BezierSurface closed = test::six_split_surface(test::bumpy_sphere(4, 0.1));
   sim::Random random(5);
   BezierSurface open;
   for (const CubicTriangle& patch : closed.patches)

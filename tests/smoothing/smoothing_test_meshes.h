@@ -6,6 +6,7 @@
 #include "sim/random.h"
 #include "smoothing/mesh_edges.h"
 #include "smoothing/sign_condition.h"
+#include "smoothing/six_split.h"
 #include "smoothing/vertex_normals.h"
 #include "sim/shapes.h"
 #include "test_support.h"
@@ -48,6 +49,12 @@ inline SchemeInput scheme_input(const TriangleMesh& mesh) {
   SchemeInput in{vertex_normals(mesh.vertices.positions, mesh.faces), mesh_edges(mesh.faces)};
   enforce_sign_condition(mesh.vertices.positions, mesh.faces, in.N);
   return in;
+}
+
+/// The six-split surface (§9.8) of a mesh with its scheme_input.
+inline BezierSurface six_split_surface(const TriangleMesh& mesh) {
+  const SchemeInput in = scheme_input(mesh);
+  return six_split(mesh.vertices.positions, mesh.faces, in.N, in.edges);
 }
 
 }  // namespace scanstation::test

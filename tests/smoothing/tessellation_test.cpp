@@ -21,11 +21,6 @@
 namespace scanstation {
 namespace {
 
-BezierSurface six_split_surface(const TriangleMesh& mesh) {
-  Eigen::MatrixX3d N = vertex_normals(mesh.vertices.positions, mesh.faces);
-  enforce_sign_condition(mesh.vertices.positions, mesh.faces, N);
-  return six_split(mesh.vertices.positions, mesh.faces, N, mesh_edges(mesh.faces));
-}
 
 // One patch over the unit right triangle in z = 0 with b111 lifted to z = 1:
 // P = (u, v, w)·corners + 6uvw e_z, zero on the edges.
@@ -106,7 +101,7 @@ TEST(Tessellation, DeviationOfABumpAtKnownValues) {
 }
 
 TEST(Tessellation, MixedDensitiesStayWatertightStreamedOrNot) {
-  const BezierSurface surface = six_split_surface(test::bumpy_sphere(3, 0.1));
+  const BezierSurface surface = test::six_split_surface(test::bumpy_sphere(3, 0.1));
   sim::Random random(11);
   test::ScratchFolder dir;
   for (int round = 0; round < 3; ++round) {
@@ -166,7 +161,7 @@ TEST(Tessellation, EveryTriangleOfMixedDensitiesTurnsAsItsPatch) {
 }
 
 TEST(Tessellation, AdaptivePatchesTakeTheSmallestDensityWithinTheTolerance) {
-  const BezierSurface surface = six_split_surface(test::bumpy_sphere(5, 0.15));
+  const BezierSurface surface = test::six_split_surface(test::bumpy_sphere(5, 0.15));
   const double tolerance = 5e-3;  // of a unit sphere whose six-split bulges up to 0.1 over a patch
   const ChosenTessellation chosen = adaptive_tessellation(surface, tolerance, 12);
   std::array<std::size_t, 13> at{};
@@ -198,7 +193,7 @@ TEST(Tessellation, AdaptivePatchesTakeTheSmallestDensityWithinTheTolerance) {
 }
 
 TEST(Tessellation, UniformPlanIsTheRegularGrid) {
-  const BezierSurface surface = six_split_surface(test::bumpy_sphere(2, 0.1));
+  const BezierSurface surface = test::six_split_surface(test::bumpy_sphere(2, 0.1));
   for (const int n : {1, 2, 3, 5}) {
     const TriangleMesh mesh = tessellate(surface, n);
     EXPECT_EQ(static_cast<std::size_t>(mesh.face_count()), surface.patches.size() * static_cast<std::size_t>(n * n));
