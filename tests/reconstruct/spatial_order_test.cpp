@@ -1,11 +1,9 @@
 // The 2D insertion order: Hilbert indices and BRIO rounds.
-#include "reconstruct/gamma_indicator.h"
 #include "reconstruct/spatial_order.h"
 #include "sim/random.h"
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -183,36 +181,6 @@ TEST(BrioHilbertSort, EqualPointsAndNaNAreOrderedWithoutFuss) {
   std::set<int> indices;
   for (const auto& [p, index] : same) indices.insert(index);
   EXPECT_EQ(indices.size(), 1001u);
-}
-
-// Definition 5.1 built the long way: the circumcentre of (a, b, l), its
-// radius R, r = |ab|/2, and the side of ab it lies on.
-double gamma_by_circumcentre(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& l) {
-  Eigen::Matrix2d m;
-  m << (b - a).transpose(), (l - a).transpose();
-  const Eigen::Vector2d rhs(0.5 * (b - a).squaredNorm(), 0.5 * (l - a).squaredNorm());
-  const Eigen::Vector2d centre = a + m.fullPivLu().solve(rhs);
-  const double ratio = 0.5 * (b - a).norm() / (centre - a).norm();
-  const Eigen::Vector2d e = b - a, normal(-e.y(), e.x());
-  const double side = normal.dot(l - a) * normal.dot(centre - a);
-  return side > 0 ? 1 - ratio : -(1 - ratio);
-}
-
-TEST(GammaIndicator2, IsDefinition51OnRandomTriangles) {
-  Random random(3);
-  for (int trial = 0; trial < 20000; ++trial) {
-    const Eigen::Vector2d a(random.uniform(-1, 1), random.uniform(-1, 1)), b(random.uniform(-1, 1), random.uniform(-1, 1)),
-        l(random.uniform(-1, 1), random.uniform(-1, 1));
-    const double expected = gamma_by_circumcentre(a, b, l);
-    if (std::abs(expected) < 1e-9 || !std::isfinite(expected)) continue;
-    ASSERT_NEAR(gamma_indicator(a, b, l), expected, 1e-9 * (1 + 1 / (1 - std::abs(expected))));
-  }
-  // A right angle at l puts the centre on ab: 0. Collinear: no circle, 1.
-  EXPECT_EQ(gamma_indicator(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1), Eigen::Vector2d(0, 0)), 0.0);
-  EXPECT_EQ(gamma_indicator(Eigen::Vector2d(1, 0), Eigen::Vector2d(3, 0), Eigen::Vector2d(2, 0)), 1.0);
-  // l far above the edge: near +1; l just above its middle: near −1.
-  EXPECT_GT(gamma_indicator(Eigen::Vector2d(-1, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1000)), 0.99);
-  EXPECT_LT(gamma_indicator(Eigen::Vector2d(-1, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 0.001)), -0.99);
 }
 
 }  // namespace
