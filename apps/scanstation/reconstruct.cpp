@@ -47,22 +47,36 @@ nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Ei
 }
 
 // The points the boundary reaches with a spike (core/far_points.h), as
-// input rows, with a line saying so: a stray reading far from the object
-// changes the faces around it, and outlier removal before reconstruction
-// is the cure (the station flow does it).
-std::vector<Eigen::Index> far_rows(const Eigen::MatrixXd& V, const Eigen::MatrixXi& cycles,
-                                   const std::vector<Eigen::Index>& source) {
+// input rows, each kind with a line saying so: a stray reading far from the
+// object changes the faces around it, and outlier removal before
+// reconstruction is the cure (the station flow does it); a point among
+// others reached by long faces all the same is where the boundary missed the
+// surface. Returns the report's two lists.
+std::vector<Eigen::Index> rows_of(const std::vector<int>& vertices, const std::vector<Eigen::Index>& source) {
   std::vector<Eigen::Index> rows;
-  for (const int v : far_points(V, cycles)) rows.push_back(source[static_cast<std::size_t>(v)]);
+  for (const int v : vertices) rows.push_back(source[static_cast<std::size_t>(v)]);
   std::sort(rows.begin(), rows.end());
-  if (!rows.empty()) {
-    std::printf("%zu point%s far from all others (nearest boundary neighbour over 100 times the median spacing; "
-                "input row%s %lld%s): the boundary spikes out to reach %s; remove outliers first\n",
-                rows.size(), rows.size() == 1 ? " lies" : "s lie", rows.size() == 1 ? "" : "s",
-                static_cast<long long>(rows.front()), rows.size() > 1 ? ", … (listed in the report)" : "",
-                rows.size() == 1 ? "it" : "them");
-  }
   return rows;
+}
+
+std::string first_rows(const std::vector<Eigen::Index>& rows) {
+  return std::string(rows.size() == 1 ? "input row " : "input rows ") + std::to_string(rows.front()) +
+         (rows.size() > 1 ? ", … (listed in the report)" : "");
+}
+
+nlohmann::json spike_rows(const Eigen::MatrixXd& V, const Eigen::MatrixXi& cycles, const std::vector<Eigen::Index>& source) {
+  const SpikedPoints spiked = spiked_points(V, cycles);
+  const std::vector<Eigen::Index> far = rows_of(spiked.far, source), reached = rows_of(spiked.reached, source);
+  if (!far.empty())
+    std::printf("%zu point%s far from all others (nearest point over 100 times the median spacing; %s): the boundary "
+                "spikes out to reach %s; remove outliers first\n",
+                far.size(), far.size() == 1 ? " lies" : "s lie", first_rows(far).c_str(), far.size() == 1 ? "it" : "them");
+  if (!reached.empty())
+    std::printf("%zu point%s among others but the boundary reaches %s only with edges over 100 times the median "
+                "spacing (%s): it misses the surface there (thin walls or sparse sampling)\n",
+                reached.size(), reached.size() == 1 ? " lies" : "s lie", reached.size() == 1 ? "it" : "them",
+                first_rows(reached).c_str());
+  return {{"far_points", far}, {"spiked_points", reached}};
 }
 
 class ReconstructCommand final : public Command {
@@ -191,8 +205,8 @@ class ReconstructCommand final : public Command {
       result["area"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.polygon.size()) + "-gon");
-      result["far_points"] = far_rows(r.points, Eigen::Map<const Eigen::RowVectorXi>(r.order.data(), Eigen::Index(r.order.size())),
-                                      r.source);
+      result.update(spike_rows(r.points, Eigen::Map<const Eigen::RowVectorXi>(r.order.data(), Eigen::Index(r.order.size())),
+                               r.source));
     } else {
       if (svg_) throw InvalidInput("--svg draws 2D results; the input has three coordinates");
       add_sight_lines(cloud.positions, context);
@@ -217,7 +231,7 @@ class ReconstructCommand final : public Command {
       result["volume"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.mesh.face_count()) + " triangles");
-      result["far_points"] = far_rows(r.mesh.vertices.positions, r.mesh.faces, r.source);
+      result.update(spike_rows(r.mesh.vertices.positions, r.mesh.faces, r.source));
     }
   }
 

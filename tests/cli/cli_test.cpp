@@ -172,12 +172,15 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
   for (const char* stage : {"read", "delaunay", "constriction", "write", "verify", "total"})
     EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
   EXPECT_EQ(report["result"]["far_points"], nlohmann::json::array());
+  EXPECT_EQ(report["result"]["spiked_points"], nlohmann::json::array());
   // CGAL's scan of a post holds two stray readings, 15 and 51 units from
   // any other point where the spacing is about 0.04: named, and said.
   r = scanstation("reconstruct " + path(test::cgal_data("points_3/poste_france.xyz")) + " -o " + path(dir / "post.ply") +
                   " --report " + path(dir / "post.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "post.json"))["result"]["far_points"], nlohmann::json::array({30, 31}));
+  const auto post = nlohmann::json::parse(slurp(dir / "post.json"));
+  EXPECT_EQ(post["result"]["far_points"], nlohmann::json::array({30, 31}));
+  EXPECT_EQ(post["result"]["spiked_points"], nlohmann::json::array());
   EXPECT_THAT(r.out, testing::HasSubstr("2 points lie far from all others"));
   {
     std::ofstream(dir / "square.xy") << "0 0\n2 0\n2 2\n0 2\n1 0.2\n0 0\n";

@@ -36,6 +36,34 @@ TEST(FarPoints, NoneOnAnEvenSurfaceAndTheSpikeOnceAVertexFliesOff) {
   EXPECT_EQ(far_points(spiked, sphere.faces, ratio * 0.99), std::vector<int>({77}));
 }
 
+TEST(FarPoints, APointAmongOthersReachedByLongEdgesIsSpikedNotFar) {
+  // The sphere's vertices and one more a hundredth of a radius off vertex
+  // 5, which the faces reach only with a triangle across the sphere: its
+  // shortest boundary edge is long, its nearest point is not.
+  const TriangleMesh sphere = sim::icosphere(4);
+  const Eigen::Index n = sphere.vertices.positions.rows();
+  Eigen::MatrixX3d V(n + 1, 3);
+  V.topRows(n) = sphere.vertices.positions;
+  V.row(n) = sphere.vertices.positions.row(5) * 1.01;
+  Eigen::MatrixX3i faces(sphere.faces.rows() + 1, 3);
+  faces.topRows(sphere.faces.rows()) = sphere.faces;
+  Eigen::Index a = 0, b = 0;  // vertex 5's antipode and the vertex nearest that
+  (V.topRows(n).rowwise() + V.row(5)).rowwise().norm().minCoeff(&a);
+  Eigen::VectorXd from_a = (V.topRows(n).rowwise() - V.row(a)).rowwise().norm();
+  from_a(a) = INFINITY;
+  from_a.minCoeff(&b);
+  faces.bottomRows(1) << static_cast<int>(n), static_cast<int>(a), static_cast<int>(b);
+  const double factor = 10.0;  // the sphere's median shortest edge is ~0.08, its diameter 2
+  const SpikedPoints spiked = spiked_points(V, faces, factor);
+  EXPECT_TRUE(spiked.far.empty());
+  EXPECT_EQ(spiked.reached, std::vector<int>({static_cast<int>(n)}));
+  EXPECT_TRUE(far_points(V, faces, factor).empty());
+  // Moved far away, the same vertex is far (a stray reading).
+  V.row(n) *= 1000.0;
+  EXPECT_EQ(spiked_points(V, faces, factor).far, std::vector<int>({static_cast<int>(n)}));
+  EXPECT_TRUE(spiked_points(V, faces, factor).reached.empty());
+}
+
 TEST(FarPoints, APolygonIsOneCycleOfItsVertices) {
   constexpr int n = 60;
   Eigen::MatrixX2d circle(n, 2);
