@@ -46,12 +46,7 @@ nlohmann::json statistics_json(const BoundaryStatistics& s, const std::vector<Ei
           {"web_cells", s.web_cells}};
 }
 
-// The points the boundary reaches with a spike (core/far_points.h), as
-// input rows, each kind with a line saying so: a stray reading far from the
-// object changes the faces around it, and outlier removal before
-// reconstruction is the cure (the station flow does it); a point among
-// others reached by long faces all the same is where the boundary missed the
-// surface. Returns the report's two lists.
+// The input rows of vertices, in increasing order.
 std::vector<Eigen::Index> rows_of(const std::vector<int>& vertices, const std::vector<Eigen::Index>& source) {
   std::vector<Eigen::Index> rows;
   for (const int v : vertices) rows.push_back(source[static_cast<std::size_t>(v)]);
@@ -64,6 +59,12 @@ std::string first_rows(const std::vector<Eigen::Index>& rows) {
          (rows.size() > 1 ? ", … (listed in the report)" : "");
 }
 
+// The points the boundary reaches with a spike (core/far_points.h), as
+// input rows, each kind with a line saying so: a stray reading far from the
+// object changes the faces around it, and outlier removal before
+// reconstruction is the cure (the station flow does it); a point among
+// others reached by long faces all the same is where the boundary missed the
+// surface. Returns the report's two lists.
 nlohmann::json spike_rows(const Eigen::MatrixXd& V, const Eigen::MatrixXi& cycles, const std::vector<Eigen::Index>& source) {
   const SpikedPoints spiked = spiked_points(V, cycles);
   const std::vector<Eigen::Index> far = rows_of(spiked.far, source), reached = rows_of(spiked.reached, source);
