@@ -184,9 +184,12 @@ PatchLayout layout_of(const TessellationPlan& plan, std::size_t p) {
 void check_plan(const BezierSurface& surface, const TessellationPlan& plan) {
   if (plan.inner.size() != surface.patches.size() || plan.edge.size() != 3 * surface.patches.size())
     throw InvalidInput("a tessellation plan needs one density per patch and one per patch edge");
-  for (const PatchEdgePair& pair : plan.shared)
+  for (const PatchEdgePair& pair : plan.shared) {
     if (std::max(pair.patch_a, pair.patch_b) >= static_cast<int>(surface.patches.size()) || std::min(pair.patch_a, pair.patch_b) < 0)
       throw InvalidInput("a tessellation plan's shared patch edge names a patch the surface does not have");
+    if (std::min(pair.edge_a, pair.edge_b) < 0 || std::max(pair.edge_a, pair.edge_b) > 2)
+      throw InvalidInput("a tessellation plan's shared patch edge names an edge other than 0, 1 or 2 of its patch");
+  }
   for (const int n : plan.inner) check_density(n);
   for (std::size_t i = 0; i < plan.edge.size(); ++i)
     if (plan.edge[i] < plan.inner[i / 3])

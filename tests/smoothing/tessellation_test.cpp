@@ -129,6 +129,8 @@ TEST(Tessellation, MixedDensitiesStayWatertightStreamedOrNot) {
       TessellationPlan wrong = plan;
       wrong.shared.push_back({0, 0, static_cast<int>(surface.patches.size()), 1});
       EXPECT_THROW(write_tessellation_ply(surface, wrong, dir / "wrong.ply", io::Overwrite::refuse), InvalidInput);
+      wrong.shared.back() = {0, 0, 1, 3};  // patches that exist, an edge that does not
+      EXPECT_THROW(write_tessellation_ply(surface, wrong, dir / "wrong.ply", io::Overwrite::refuse), InvalidInput);
     }
     const TriangleMesh streamed = io::read_mesh(path);
     ASSERT_EQ(streamed.vertex_count(), in_memory.vertex_count());
