@@ -8,12 +8,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace scanstation::acquisition {
 
 namespace {
 
 constexpr float invalid = -1.0f;
+constexpr int kMaxDisparity = 2048;
 
 cv::Ptr<cv::StereoSGBM> make_matcher(const StereoOptions& o, int channels) {
   if (o.num_disparities <= 0 || o.num_disparities % 16 != 0)
@@ -83,6 +85,17 @@ cv::Mat compute_disparity(const cv::Mat& left, const cv::Mat& right, const Stere
     throw InvalidInput("stereo: the left and right images must be non-empty and of the same size and type");
   if (left.depth() != CV_8U || (left.channels() != 1 && left.channels() != 3))
     throw InvalidInput("stereo: the images must be 8-bit grey or BGR");
+  // SGBM keeps disparities as 16-bit fixed point (×16): a search reaching
+  // 2048 pixels overflows them, and OpenCV then writes past its buffers.
+  const long reach = static_cast<long>(options.min_disparity) + options.num_disparities;
+  if (options.min_disparity < -kMaxDisparity || reach > kMaxDisparity)
+    throw InvalidInput("stereo: the disparities searched, " + std::to_string(options.min_disparity) + " to " +
+                       std::to_string(reach) + " pixels, must lie within ±" + std::to_string(kMaxDisparity) +
+                       " (OpenCV keeps them as 16-bit fixed point)");
+  if (options.min_disparity >= left.cols)
+    throw InvalidInput("stereo: the smallest disparity (" + std::to_string(options.min_disparity) +
+                       " pixels) must be less than the image width (" + std::to_string(left.cols) +
+                       " pixels): no pixel could match");
   const cv::Ptr<cv::StereoSGBM> matcher = make_matcher(options, left.channels());
   cv::Mat left_fixed;
   if (options.pad_left_edge) {

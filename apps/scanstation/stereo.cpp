@@ -84,11 +84,11 @@ class StereoCommand final : public Command {
     cli_->add_option("--truth", truth_, "Ground-truth disparity image in pixels (0 = unknown): report bad-pixel rates");
     cli_->add_flag("--plain", plain_, "Plain SGBM as in OpenCV's stereo_match sample (the reference), ignores the rest");
     cli_->add_option("--min-disparity", options_.min_disparity,
-                     "Smallest disparity (0 or more: the PNG encodings hold no negative disparity)")
-        ->check(CLI::Range(0, 100000))
+                     "Smallest disparity (0 or more: the PNG encodings hold no negative disparity; with --disparities at most 2048)")
+        ->check(CLI::Range(0, 2032))
         ->capture_default_str();
-    cli_->add_option("--disparities", options_.num_disparities, "Disparity range, a multiple of 16")
-        ->check(CLI::Range(16, 4096))
+    cli_->add_option("--disparities", options_.num_disparities, "Disparity range, a multiple of 16 (with --min-disparity at most 2048)")
+        ->check(CLI::Range(16, 2048))
         ->capture_default_str();
     cli_->add_option("--block", options_.block_size, "SGBM block size (odd)")->check(CLI::Range(1, 255))->capture_default_str();
     cli_->add_option("--p1", options_.p1, "SGBM penalty P1 (0 = 8·channels·block²)")

@@ -74,6 +74,17 @@ TEST(StereoMatcher, RejectsMismatchedImagesAndBadOptions) {
   test::expect_error<InvalidInput>([&] { compute_disparity(a, a, odd); }, {"multiple of 16"});
   const cv::Mat f(40, 60, CV_32F, cv::Scalar(0));
   test::expect_error<InvalidInput>([&] { compute_disparity(f, f); }, {"8-bit"});
+  // Beyond 16-bit fixed point OpenCV wrote past its buffers (heap corruption
+  // at a smallest disparity of 97123); beyond the width nothing can match.
+  StereoOptions far;
+  far.min_disparity = 97123;
+  test::expect_error<InvalidInput>([&] { compute_disparity(a, a, far); }, {"97123 to 97251", "2048"});
+  far.min_disparity = 0;
+  far.num_disparities = 4096;
+  test::expect_error<InvalidInput>([&] { compute_disparity(a, a, far); }, {"0 to 4096", "2048"});
+  far.num_disparities = 16;
+  far.min_disparity = 60;
+  test::expect_error<InvalidInput>([&] { compute_disparity(a, a, far); }, {"smallest disparity (60", "width (60"});
 }
 
 }  // namespace
