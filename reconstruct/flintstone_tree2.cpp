@@ -41,11 +41,17 @@ void build_chain(FlintstoneTree2& tree, int id, int p, int s, int depth) {
     node.depth = task.depth;
     node.stone = flintstone_of<2>(tree.vertices, {tree.vertex(task.p), tree.vertex(task.s)}, members, split);
     // flintstone_of names a vertex; a polygon may visit the same position
-    // twice, so take the first position holding it.
-    node.q = task.p + 1;
-    for (int k = task.p + 1; k < task.s; ++k)
+    // twice, so take the first position holding it. Where the vertices after
+    // it repeat its coordinates (they tie with it), split in the middle of
+    // that run, and in the middle of the chain when no vertex was named (its
+    // ends coincide): splitting at one end made a chain of n copies of one
+    // point n levels deep, O(n²) to build (100k copies did not finish).
+    node.q = (task.p + task.s) / 2;
+    for (int k = task.p + 1; k < task.s && split >= 0; ++k)
       if (tree.vertex(k) == split) {
-        node.q = k;
+        int last = k;
+        while (last + 1 < task.s && tree.vertices.row(tree.vertex(last + 1)) == tree.vertices.row(split)) ++last;
+        node.q = k + (last - k) / 2;
         break;
       }
     for (int side = 0; side < 2; ++side) {

@@ -132,6 +132,17 @@ TEST(FlintstoneTree2, DegeneratePolygons) {
   // A polygon that visits a position twice (a pinched boundary).
   const Polygon2 pinched{(Eigen::MatrixX2d(6, 2) << 0, 0, 2, 0, 1, 1, 2, 2, 0, 2, 1, 1).finished()};
   expect_valid_tree(flintstone_tree(pinched), "pinched");
+  // Repeated vertices (a scan that dwelt on one point) keep the tree
+  // balanced: 20k copies of one corner gave a chain 20k levels deep.
+  for (const int copies : {1000, 20000}) {
+    Eigen::MatrixX2d dwelt(copies + 2, 2);
+    dwelt.topRows(copies).setZero();
+    dwelt.bottomRows(2) << 1, 0, 0, 1;
+    const FlintstoneTree2 tree = flintstone_tree(Polygon2{dwelt});
+    expect_valid_tree(tree, "repeated vertices");
+    EXPECT_LE(tree.levels(), 2 * static_cast<int>(std::log2(copies)) + 4) << copies;
+    expect_inclusion_matches_brute_force(tree, 500, 3, "repeated vertices");
+  }
   test::expect_error<InvalidInput>([] { flintstone_tree(Polygon2{Eigen::MatrixX2d(2, 2)}); }, {"at least 3"});
   test::expect_error<InvalidInput>([] { flintstone_tree(Polygon2{Eigen::MatrixX2d::Ones(4, 2)}); }, {"coincide"});
 }
