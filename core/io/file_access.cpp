@@ -59,6 +59,10 @@ std::string read_file(const fs::path& path) {
   const auto status = fs::status(path, ec);
   if (!fs::exists(status)) throw InvalidInput(path.string() + ": no such file");
   if (fs::is_directory(status)) throw InvalidInput(path.string() + ": is a folder, expected a file");
+  // A device such as /dev/zero never ends: it would be read until memory ran
+  // out. Pipes are read (process substitution, /dev/stdin from a pipe).
+  if (fs::is_character_file(status) || fs::is_block_file(status))
+    throw InvalidInput(path.string() + ": is a device, expected a file or a pipe");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(os_error("cannot open", path, errno));
   std::string content;

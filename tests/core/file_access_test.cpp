@@ -79,6 +79,8 @@ TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
   ScratchFolder dir;
   expect_error<InvalidInput>([&] { read_file(dir / "none.ply"); }, {"none.ply", "no such file"});
   expect_error<InvalidInput>([&] { read_file(dir.path()); }, {"folder"});
+  // /dev/zero never ends: it was read until memory ran out.
+  expect_error<InvalidInput>([&] { read_file("/dev/zero"); }, {"/dev/zero", "is a device"});
   expect_error<InvalidInput>([&] { check_writable(dir.path(), Overwrite::replace); }, {"folder"});
 }
 
