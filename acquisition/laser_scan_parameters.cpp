@@ -59,7 +59,11 @@ LaserScanParameters laser_scan_parameters_from_json(const json& value, const std
   LaserTriangulationOptions& t = p.triangulation;
   if (const auto it = value.find("peak_fit"); it != value.end()) {
     if (!it->is_string()) throw InvalidInput(where + ".peak_fit: expected a string");
-    l.fit = parse_peak_fit(it->get<std::string>());
+    try {
+      l.fit = parse_peak_fit(it->get<std::string>());
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(where + ".peak_fit: " + e.what());
+    }
   } else if (missing) {
     missing->push_back(where + ".peak_fit");
   }
@@ -68,6 +72,8 @@ LaserScanParameters laser_scan_parameters_from_json(const json& value, const std
   read_key(value, "minimum_contrast", where, l.minimum_contrast, finite_non_negative, "a number ≥ 0", missing);
   read_key(value, "minimum_width", where, l.minimum_width, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
   read_key(value, "maximum_width", where, l.maximum_width, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
+  if (l.minimum_width > l.maximum_width)
+    throw InvalidInput(where + ".minimum_width (" + std::to_string(l.minimum_width) + ") is greater than maximum_width (" + std::to_string(l.maximum_width) + "): no stripe could be kept");
   read_key(value, "saturation", where, l.saturation, [](int v) { return v >= 1 && v <= 255; }, "1..255", missing);
   read_key(value, "double_peak_ratio", where, l.double_peak_ratio, positive, "a positive number", missing);
   if (const auto it = value.find("region"); it != value.end()) {

@@ -8,10 +8,13 @@
 #include "core/log.h"
 
 #include <cerrno>
+#include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <fcntl.h>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -176,14 +179,25 @@ void read_manifest(const fs::path& folder, SessionContents& contents) {
   const json* format = find(manifest, "format");
   if (!format || *format != kFormat)
     contents.problems.push_back(where + ": field \"format\" is not \"" + std::string(kFormat) + "\"; read anyway");
+  const json* version = find(manifest, "version");
+  if (!version || !version->is_number_integer())
+    contents.problems.push_back(where + (version ? ": field \"version\": expected an integer, got " + version->dump()
+                                                 : std::string(": missing field \"version\"")) +
+                                "; read as version " + std::to_string(kFormatVersion));
+  else if (version->get<long long>() > kFormatVersion)
+    throw InvalidInput(where + ": version " + std::to_string(version->get<long long>()) +
+                       ": this scanstation reads sessions up to version " + std::to_string(kFormatVersion) +
+                       "; replay it with a newer scanstation");
   const json* rig = find(manifest, "rig");
   if (!rig || !rig->is_string()) throw InvalidInput(where + ": missing field \"rig\" (a string)");
   m.rig = *rig;
   if (m.rig != "turntable" && m.rig != "stereo")
     throw InvalidInput(where + ": rig \"" + m.rig + "\": expected \"turntable\" or \"stereo\"");
   const json* steps = find(manifest, "steps");
-  if (!steps || !steps->is_number_integer() || steps->get<long long>() < 1 || steps->get<long long>() > 1 << 20)
-    throw InvalidInput(where + ": missing field \"steps\" (a positive integer)");
+  if (!steps) throw InvalidInput(where + ": missing field \"steps\" (a positive integer)");
+  if (!steps->is_number_integer() || steps->get<long long>() < 1 || steps->get<long long>() > 1 << 20)
+    throw InvalidInput(where + ": field \"steps\": expected an integer from 1 to " + std::to_string(1 << 20) +
+                       ", got " + steps->dump());
   m.steps = *steps;
   read_geometry(manifest, where, contents);
   if (const json* parameters = find(manifest, "parameters")) {
@@ -206,22 +220,32 @@ void read_manifest(const fs::path& folder, SessionContents& contents) {
     contents.problems.push_back(where + ": missing field \"station\"");
   }
   const json* software = find(manifest, "software");
-  const json* version = software ? find(*software, "version") : nullptr;
-  if (version && version->is_string()) {
-    m.software_version = *version;
+  const json* software_version = software ? find(*software, "version") : nullptr;
+  if (software_version && software_version->is_string()) {
+    m.software_version = *software_version;
   } else {
     contents.problems.push_back(where + ": missing field \"software.version\"");
   }
 }
 
 // One step line of the journal, or a message saying what is wrong with it.
-std::optional<SessionStep> parse_step(const json& line, const std::string& where, std::string& problem) {
+std::optional<SessionStep> parse_step(const json& line, const std::string& where, int planned, std::string& problem) {
   const json* step = find(line, "step");
   const json* angle = find(line, "angle_deg");
   const json* frames = find(line, "frames");
-  if (!step || !step->is_number_integer()) return problem = where + ": missing field \"step\"", std::nullopt;
-  if (!angle || !angle->is_number()) return problem = where + ": missing field \"angle_deg\"", std::nullopt;
-  if (!frames || !frames->is_array()) return problem = where + ": missing field \"frames\"", std::nullopt;
+  const auto expected = [&](const json* field, const char* name, const char* what) {
+    return where + (field ? std::string(": field \"") + name + "\": expected " + what + ", got " + field->dump()
+                          : std::string(": missing field \"") + name + "\"");
+  };
+  if (!step || !step->is_number_integer()) return problem = expected(step, "step", "an integer"), std::nullopt;
+  if (!angle || !angle->is_number() || !std::isfinite(angle->get<double>()) || std::abs(angle->get<double>()) > 1e6)
+    return problem = expected(angle, "angle_deg", "a number of degrees"), std::nullopt;
+  if (!frames || !frames->is_array()) return problem = expected(frames, "frames", "an array"), std::nullopt;
+  // A step outside the turn the manifest plans cannot be a step of this scan.
+  if (step->get<long long>() < 0 || step->get<long long>() >= planned)
+    return problem = where + ": step " + step->dump() + ": expected 0 to " + std::to_string(planned - 1) +
+                     " (the manifest plans " + std::to_string(planned) + " steps)",
+           std::nullopt;
   SessionStep s;
   s.step = *step;
   s.angle_deg = *angle;
@@ -233,6 +257,13 @@ std::optional<SessionStep> parse_step(const json& line, const std::string& where
     const json* laser = find(f, "laser");
     if (!file || !file->is_string() || !laser || !(laser->is_null() || laser->is_number_integer()))
       return problem = where + ": frames[" + std::to_string(i) + "]: expected \"file\" and \"laser\"", std::nullopt;
+    // Frames live in the session folder: a journal naming a file elsewhere
+    // (an absolute path, a way up with "..") is not read.
+    const fs::path name = file->get<std::string>();
+    if (name.empty() || name.is_absolute() || std::find(name.begin(), name.end(), "..") != name.end())
+      return problem = where + ": frames[" + std::to_string(i) + "].file \"" + name.string() +
+                       "\": expected a path inside the session folder",
+             std::nullopt;
     SessionFrame frame{*file, laser->is_null() ? std::nullopt : std::optional<int>(laser->get<int>())};
     if (const json* camera = find(f, "camera")) {
       if (*camera != kCameraNames[0] && *camera != kCameraNames[1])
@@ -256,6 +287,7 @@ void read_journal(const fs::path& folder, SessionContents& contents) {
     return;
   }
   const std::string text = io::read_file(path);
+  std::set<int> recorded;  // a step recorded twice is no step of one scan
   std::size_t begin = 0, line_number = 0;
   while (begin < text.size()) {
     ++line_number;
@@ -276,7 +308,12 @@ void read_journal(const fs::path& folder, SessionContents& contents) {
     const json* event = find(line, "event");
     if (!event || *event != "step") continue;
     std::string problem;
-    if (auto step = parse_step(line, where, problem)) {
+    auto step = parse_step(line, where, contents.manifest.steps, problem);
+    if (step && !recorded.insert(step->step).second) {
+      problem = where + ": step " + std::to_string(step->step) + " was recorded on an earlier line";
+      step.reset();
+    }
+    if (step) {
       step->journal_line = line_number;
       contents.steps.push_back(std::move(*step));
     } else {

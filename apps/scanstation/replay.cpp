@@ -4,6 +4,7 @@
 // found is reported and what is intact is replayed.
 #include "acquisition/scan_calibration.h"
 #include "command.h"
+#include "core/errors.h"
 #include "scan_job.h"
 #include "scan_parameter_options.h"
 
@@ -38,6 +39,15 @@ class ReplayCommand final : public Command {
     for (const char* name : {"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png", "report.json"})
       io::check_writable(out / name, context.overwrite);
     const acquisition::SessionContents contents = acquisition::read_session(session_);
+    // Damage is reported and what is intact replayed; a session with nothing
+    // intact is an error, not an empty result.
+    const auto nothing = [&](const std::string& why) {
+      for (const std::string& problem : contents.problems) context.log->warn("{}", problem);
+      return InvalidInput(session_.string() + ": nothing to replay: " + why);
+    };
+    if (contents.steps.empty()) throw nothing("no complete step is recorded in its journal");
+    if (contents.manifest.rig == "turntable" && contents.lasers.empty() && calibration_.empty())
+      throw nothing("no laser plane of its geometry is intact (replay with --calibration FILE to use another)");
     station::SessionProcessing processing = session_processing(context, contents.manifest, density_);
     if (parameters_.any()) processing.replay.parameters = parameters_.apply(contents.manifest.parameters);
     if (!stereo_.given().empty())
@@ -52,6 +62,9 @@ class ReplayCommand final : public Command {
     const nlohmann::json report = station::process_session(contents, out, processing);
     context.progress.finish();
     for (const auto& problem : report["problems"]) context.log->warn("{}", problem.get<std::string>());
+    if (report["steps"]["used"].get<int>() == 0)
+      throw InvalidInput(session_.string() + ": nothing to replay: none of its " +
+                         std::to_string(contents.steps.size()) + " recorded steps could be used (see the warnings)");
     for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
       context.log->warn("{}", warning);
     for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "replay_speedup", "geometry",

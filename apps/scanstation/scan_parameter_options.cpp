@@ -1,6 +1,7 @@
 #include "scan_parameter_options.h"
 
 #include "command.h"
+#include "core/errors.h"
 
 namespace scanstation::app {
 
@@ -48,6 +49,10 @@ acquisition::LaserScanParameters ScanParameterOptions::apply(acquisition::LaserS
   if (outlier_radius) p.outlier_radius = *outlier_radius;
   if (outlier_neighbours) p.outlier_neighbours = *outlier_neighbours;
   if (row_step) p.row_step = *row_step;
+  if (p.line.minimum_width > p.line.maximum_width)
+    throw InvalidInput("the narrowest stripe peak kept (--min-width, " + std::to_string(p.line.minimum_width) +
+                       ") is wider than the widest (--max-width, " + std::to_string(p.line.maximum_width) +
+                       "): no stripe could be kept");
   return p;
 }
 

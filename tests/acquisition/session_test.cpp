@@ -284,6 +284,52 @@ void edit_manifest(const fs::path& session, const std::function<void(json&)>& ed
   std::ofstream(session / "manifest.json", std::ios::trunc) << manifest.dump(2);
 }
 
+// A journal line that cannot be a step of this scan is named and skipped:
+// a frame outside the session folder (it was opened: "../../etc/passwd"),
+// a step outside the planned turn, a step recorded twice.
+TEST_F(RecordedSphere, ForeignJournalStepsAreNamedAndSkipped) {
+  test::ScratchFolder scratch;
+  const fs::path damaged = copy(scratch);
+  std::vector<json> steps = journal_steps(damaged);
+  ASSERT_EQ(steps.size(), std::size_t(kSteps));
+  std::string journal;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    json step = steps[i];
+    if (i == 1) step["frames"][0]["file"] = "../../../../etc/passwd";
+    if (i == 2) step["frames"][0]["file"] = "/etc/passwd";
+    if (i == 3) step["step"] = kSteps;
+    if (i == 4) step["step"] = -1;
+    if (i == 5) step["step"] = 0;
+    if (i == 6) step["angle_deg"] = "45";
+    journal += step.dump() + "\n";
+  }
+  std::ofstream(damaged / "journal.jsonl", std::ios::binary | std::ios::trunc) << journal;
+  const SessionContents contents = read_session(damaged);
+  EXPECT_EQ(contents.steps.size(), 2u);  // steps 0 and 7
+  ASSERT_EQ(contents.problems.size(), 6u);
+  EXPECT_THAT(contents.problems[0], testing::HasSubstr("journal.jsonl:2: frames[0].file \"../../../../etc/passwd\": "
+                                                       "expected a path inside the session folder: step ignored"));
+  EXPECT_THAT(contents.problems[1], testing::HasSubstr("\"/etc/passwd\": expected a path inside"));
+  EXPECT_THAT(contents.problems[2], testing::HasSubstr("journal.jsonl:4: step 8: expected 0 to 7 (the manifest plans 8"));
+  EXPECT_THAT(contents.problems[3], testing::HasSubstr("step -1: expected 0 to 7"));
+  EXPECT_THAT(contents.problems[4], testing::HasSubstr("journal.jsonl:6: step 0 was recorded on an earlier line"));
+  EXPECT_THAT(contents.problems[5], testing::HasSubstr("field \"angle_deg\": expected a number of degrees, got \"45\""));
+  EXPECT_EQ(replay_session(contents).steps_used, 2);
+}
+
+TEST_F(RecordedSphere, NewerSessionVersionIsRefused) {
+  test::ScratchFolder scratch;
+  const fs::path damaged = copy(scratch);
+  edit_manifest(damaged, [](json& m) { m["version"] = 2; });
+  test::expect_error<InvalidInput>([&] { read_session(damaged); },
+                                   {"manifest.json: version 2", "reads sessions up to version 1"});
+  edit_manifest(damaged, [](json& m) { m["parameters"]["minimum_width"] = 11; });
+  test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"version 2"});
+  edit_manifest(damaged, [](json& m) { m["version"] = 1; });
+  test::expect_error<InvalidInput>([&] { read_session(damaged); },
+                                   {"parameters.minimum_width (11) is greater than maximum_width"});
+}
+
 TEST_F(RecordedSphere, AlteredCalibrationIsRefusedOrItsLaserSkipped) {
   test::ScratchFolder scratch;
   const fs::path damaged = copy(scratch);

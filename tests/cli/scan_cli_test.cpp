@@ -282,6 +282,37 @@ TEST_F(ScannedSphere, DamagedSessionIsReportedAndWhatIsIntactReplayed) {
   EXPECT_THAT(refused.err, testing::HasSubstr("manifest.json: geometry.camera does not match"));
 }
 
+// A session with nothing intact is an error (exit 1), not an empty result
+// with exit 0: no step in the journal, no intact laser plane, no usable frame.
+TEST_F(ScannedSphere, SessionWithNothingIntactIsAnError) {
+  ScratchFolder dir;
+  const auto damaged = [&](const std::string& name) {
+    fs::copy(session(), dir / name, fs::copy_options::recursive);
+    return dir / name;
+  };
+  const auto replay = [&](const fs::path& s) { return scanstation("replay " + s.string() + " -o " + (s / "out").string()); };
+  const fs::path empty = damaged("empty");
+  std::ofstream(empty / "journal.jsonl", std::ios::trunc);
+  Outcome r = replay(empty);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("nothing to replay: no complete step is recorded in its journal"));
+
+  const fs::path planeless = damaged("planeless");
+  json manifest = json::parse(slurp(planeless / "manifest.json"));
+  manifest["geometry"]["lasers"] = json::array();
+  std::ofstream(planeless / "manifest.json", std::ios::trunc) << manifest.dump(2);
+  r = replay(planeless);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("nothing to replay: no laser plane of its geometry is intact"));
+
+  const fs::path frameless = damaged("frameless");
+  fs::remove_all(frameless / "frames");
+  r = replay(frameless);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("step_0000_off.png: missing"));
+  EXPECT_THAT(r.err, testing::HasSubstr("nothing to replay: none of its " + std::to_string(kSteps) + " recorded steps"));
+}
+
 TEST(ScanCli, MeshFileComesOutInItsOwnCoordinates) {
   ScratchFolder dir;
   // A sphere of radius 1.5 units centred at (10, 20, 5): the simulator scales
