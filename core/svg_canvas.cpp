@@ -114,7 +114,7 @@ std::string SvgCanvas::str() const {
   // Data units to screen pixels with y up: translate the view's top-left to
   // the origin, scale, flip y.
   const double s = 1.0 / data_per_px_;
-  out += "<g transform=\"matrix(";
+  out += "<g data-scanstation=\"view\" transform=\"matrix(";
   io::append_double(out, s);
   out += " 0 0 ";
   io::append_double(out, -s);

@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "core/io/number_text.h"
 #include "core/io/text_lines.h"
+#include "core/log.h"
 #include "core/svg_canvas.h"
 
 #include <algorithm>
@@ -139,6 +140,44 @@ std::vector<Eigen::Vector2d> read_path(PathScanner& scan) {
   return points;
 }
 
+// Tags of `name` ("<g", "<polygon") that start at `at`: followed by a blank,
+// '/' or '>' (so "<g" is not "<glyph").
+bool tag_at(std::string_view text, std::size_t at, std::string_view name) {
+  if (text.compare(at, name.size(), name) != 0 || at + name.size() >= text.size()) return false;
+  const char next = text[at + name.size()];
+  return std::isspace(static_cast<unsigned char>(next)) || next == '/' || next == '>';
+}
+
+// What the reader leaves out is said, not dropped silently: further shape
+// elements, and transforms (coordinates are read as written, in the
+// element's own user space). The view group SvgCanvas writes (y flip and
+// scale, marked data-scanstation) is display only.
+void warn_unread_parts(std::string_view text, std::size_t element, const std::filesystem::path& file) {
+  const auto log = room_logger("core");
+  std::vector<std::size_t> shapes;
+  for (std::size_t at = text.find('<'); at != std::string_view::npos; at = text.find('<', at + 1))
+    if (tag_at(text, at, "<polygon") || tag_at(text, at, "<polyline") || tag_at(text, at, "<path")) shapes.push_back(at);
+  if (shapes.size() > 1)
+    log->warn("{}: holds {} polygon, polyline or path elements; only the first (line {}) is read", file.string(),
+              shapes.size(), line_at(text, element));
+  std::vector<std::size_t> open_groups;
+  for (std::size_t at = text.find('<'); at < element; at = text.find('<', at + 1)) {
+    if (tag_at(text, at, "<g")) {
+      const std::size_t end = text.find('>', at);
+      if (end == std::string_view::npos || text[end - 1] != '/') open_groups.push_back(at);
+    } else if (tag_at(text, at, "</g") && !open_groups.empty()) {
+      open_groups.pop_back();
+    }
+  }
+  open_groups.push_back(element);
+  for (const std::size_t tag : open_groups) {
+    const auto transform = attribute(text, tag, "transform");
+    if (!transform || attribute(text, tag, "data-scanstation")) continue;
+    log->warn("{}:{}: transform=\"{}\" is not applied: the polygon's coordinates are read as written", file.string(),
+              line_at(text, tag), transform->value);
+  }
+}
+
 }  // namespace
 
 Polygon2 read_svg(std::string_view text, const std::filesystem::path& file) {
@@ -158,6 +197,7 @@ Polygon2 read_svg(std::string_view text, const std::filesystem::path& file) {
   }
   if (best == std::string_view::npos)
     throw FormatError(FileLocation::whole(file), "expected a <polygon>, <polyline> or <path> element, found none");
+  warn_unread_parts(text, best, file);
   const auto attr = attribute(text, best, chosen.attr);
   if (!attr)
     throw FormatError(FileLocation::at_line(file, line_at(text, best)),

@@ -11,8 +11,10 @@ namespace scanstation::io {
 
 /// Reads the first <polygon points="..."> (or <polyline>, or <path d="...">
 /// with M/L/H/V/Z commands, absolute or relative) of an SVG file. Points are
-/// read as written, so a file written by write_svg reads back exactly.
-/// Throws FormatError naming the line.
+/// read as written, so a file written by write_svg reads back exactly;
+/// transforms are not applied, and other shape elements are not read: both
+/// are named in a warning (the "core" logger). Throws FormatError naming the
+/// line.
 Polygon2 read_svg(std::string_view text, const std::filesystem::path& file);
 
 /// Draws the polygon (outline and vertex dots) with the y axis pointing up;

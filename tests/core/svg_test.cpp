@@ -1,9 +1,13 @@
 #include "core/errors.h"
 #include "core/io/svg.h"
+#include "core/log.h"
 #include "core/polygon.h"
 #include "test_support.h"
 
 #include <cmath>
+#include <memory>
+#include <spdlog/sinks/ostream_sink.h>
+#include <sstream>
 #include <numbers>
 
 namespace scanstation::io {
@@ -56,6 +60,36 @@ TEST(Svg, ReadsPathsAbsoluteAndRelative) {
   const Polygon2 r = read_svg("<svg><path d='M0-1L2-1.5e0,3 4Z'/></svg>", "r.svg");
   ASSERT_EQ(r.size(), 3);
   EXPECT_EQ(r.vertices(1, 1), -1.5);
+}
+
+// What the reader leaves out, as the core logger says it while reading.
+std::string warnings_reading(const std::string& svg) {
+  std::ostringstream said;
+  const auto logger = room_logger("core");
+  const auto sink = std::make_shared<spdlog::sinks::ostream_sink_st>(said);
+  logger->sinks().push_back(sink);
+  read_svg(svg, "w.svg");
+  logger->sinks().pop_back();
+  return said.str();
+}
+
+// Transforms and further shapes are not read; that is said, not silent (a
+// group's scale(0) and a second polygon were dropped without a word).
+TEST(Svg, UnreadTransformsAndShapesAreNamed) {
+  const std::string grouped = warnings_reading(
+      "<svg>\n<g transform='scale(0)'>\n<polygon points='0,0 10,0 10,10'/></g></svg>");
+  EXPECT_NE(grouped.find("w.svg:2: transform=\"scale(0)\" is not applied"), std::string::npos) << grouped;
+  const std::string own = warnings_reading("<svg><g><polygon transform='scale(2)' points='0,0 1,0 1,1'/></g></svg>");
+  EXPECT_NE(own.find("transform=\"scale(2)\" is not applied"), std::string::npos) << own;
+  const std::string closed = warnings_reading(
+      "<svg><g transform='scale(3)'><circle r='1'/></g>\n<polygon points='0,0 1,0 1,1'/></svg>");
+  EXPECT_EQ(closed.find("not applied"), std::string::npos) << closed;  // that group ended before the polygon
+  const std::string two = warnings_reading(
+      "<svg><polygon points='0,0 10,0 10,10'/>\n<polyline points='20,20 30,20 30,30'/></svg>");
+  EXPECT_NE(two.find("holds 2 polygon, polyline or path elements; only the first (line 1) is read"), std::string::npos)
+      << two;
+  // scanstation's own files: the view group is display only, nothing said.
+  EXPECT_EQ(warnings_reading(write_svg(star(5, 1.0, {0, 0}))), "");
 }
 
 TEST(Svg, MalformedInputNamesFileLineAndExpectation) {
