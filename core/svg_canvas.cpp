@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <tuple>
+#include <utility>
 #include <sstream>
 
 namespace scanstation {
@@ -33,18 +36,26 @@ std::string escape(const std::string& text) {
 SvgCanvas::SvgCanvas(const Eigen::AlignedBox2d& bounds, double width_px) : width_px_(width_px) {
   Eigen::AlignedBox2d box = bounds;
   if (box.isEmpty()) box = Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
-  double extent = box.sizes().maxCoeff();
-  if (!(extent > 0.0)) extent = std::max(1.0, box.max().cwiseAbs().maxCoeff());
-  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(0.05 * extent);
-  view_ = Eigen::AlignedBox2d(box.min() - margin, box.max() + margin);
-  // Degenerate (collinear) data still gets a visible band.
-  for (int a = 0; a < 2; ++a)
-    if (view_.sizes()[a] < 0.1 * extent) {
-      view_.min()[a] -= 0.05 * extent;
-      view_.max()[a] += 0.05 * extent;
-    }
-  data_per_px_ = view_.sizes().x() / width_px_;
+  // Sizes are taken by halves: data near the largest doubles (±1e308) has
+  // sides that overflow, and the view came out infinite.
+  double half = (box.max() / 2 - box.min() / 2).maxCoeff();
+  if (!(half > 0.0)) half = std::max(0.5, box.max().cwiseAbs().maxCoeff() / 2);
+  const double largest = std::numeric_limits<double>::max();
+  const auto widened = [&](double lo, double hi, double by) {
+    return std::pair(std::max(lo - by, -largest), std::min(hi + by, largest));
+  };
+  for (int a = 0; a < 2; ++a) {
+    // A margin of a twentieth of the extent; degenerate (collinear) data
+    // still gets a visible band.
+    auto [lo, hi] = widened(box.min()[a], box.max()[a], 0.1 * half);
+    if (hi / 2 - lo / 2 < 0.1 * half) std::tie(lo, hi) = widened(lo, hi, 0.1 * half);
+    view_.min()[a] = lo;
+    view_.max()[a] = hi;
+  }
+  data_per_px_ = (half_size(0) / width_px_) * 2;
 }
+
+double SvgCanvas::half_size(int axis) const { return view_.max()[axis] / 2 - view_.min()[axis] / 2; }
 
 void SvgCanvas::polygon(const Eigen::MatrixX2d& V, const SvgStyle& style) {
   body_ += "  <polygon fill=\"" + style.fill + "\" stroke=\"" + style.stroke + "\" stroke-width=\"";
@@ -101,7 +112,7 @@ void SvgCanvas::caption(const std::string& text) {
 }
 
 std::string SvgCanvas::str() const {
-  const double height_px = width_px_ * view_.sizes().y() / view_.sizes().x();
+  const double height_px = width_px_ * (half_size(1) / half_size(0));
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
   io::append_double(out, width_px_);
   out += "\" height=\"";

@@ -39,6 +39,7 @@ class SvgCanvas {
 
  private:
   double px_to_data(double px) const { return px * data_per_px_; }
+  double half_size(int axis) const;  ///< half the view's side, computed without overflow
   Eigen::AlignedBox2d view_;
   double width_px_;
   double data_per_px_;

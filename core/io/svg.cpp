@@ -204,8 +204,10 @@ Polygon2 read_svg(std::string_view text, const std::filesystem::path& file) {
                       std::string("expected a '") + chosen.attr + "' attribute on " + chosen.tag + ">");
   PathScanner scan(text, *attr, file);
   std::vector<Eigen::Vector2d> points = chosen.attr == std::string_view("d") ? read_path(scan) : read_point_list(scan);
-  // An explicitly repeated first vertex closes the polygon; it is not a vertex.
-  if (points.size() > 1 && points.front() == points.back()) points.pop_back();
+  // An explicitly repeated first vertex closes the polygon; it is not a vertex
+  // (as drop_closing_repeat: never below 3, so that what write_svg wrote of
+  // a degenerate polygon, three copies of one point, reads back the same).
+  if (points.size() > 3 && points.front() == points.back()) points.pop_back();
   if (points.size() < 3)
     throw FormatError(FileLocation::at_line(file, line_at(text, attr->offset)),
                       "expected a polygon of at least 3 vertices, found " + std::to_string(points.size()));
