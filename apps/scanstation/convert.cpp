@@ -66,6 +66,9 @@ class ConvertCommand final : public Command {
       summary = std::to_string(polygon.size()) + " polygon vertices";
     } else {
       const TriangleMesh mesh = read_stage(context, [&] { return io::read_mesh(input_, read); });
+      // An empty file would be written, which the point formats cannot read
+      // back ("file is empty").
+      if (mesh.vertex_count() == 0) throw InvalidInput(input_.string() + ": holds no vertices: nothing to convert");
       input_report["vertices"] = mesh.vertex_count();
       input_report["faces"] = mesh.face_count();
       input_report["dimension"] = mesh.vertices.dimension;

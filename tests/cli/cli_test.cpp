@@ -105,6 +105,16 @@ TEST(Cli, BadInputExitsOneWithFileAndLine) {
   r = scanstation("convert " + path(dir / "bad.off") + " " + path(dir / "never.ply"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_FALSE(std::filesystem::exists(dir / "never.ply"));
+  // A mesh without vertices was converted to an empty file no reader takes.
+  std::ofstream(dir / "none.off") << "OFF\n0 0 0\n";
+  r = scanstation("convert " + path(dir / "none.off") + " " + path(dir / "never.obj"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("none.off: holds no vertices: nothing to convert"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "never.obj"));
+  // A device never ends: it was read until memory ran out.
+  r = scanstation("info /dev/zero --format ply");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("/dev/zero: is a device"));
 }
 
 // An output whose folder is missing is a bad option, found before the work
