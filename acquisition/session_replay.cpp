@@ -35,8 +35,11 @@ std::string frame_mismatch(const cv::Mat& frame, const PinholeCamera& camera) {
 // The frame at `path` when it can stand for `camera`'s, else empty with
 // `why` saying what is wrong: missing, unreadable, or a frame_mismatch.
 cv::Mat usable_frame(const fs::path& path, const PinholeCamera& camera, std::string& why) {
-  if (!fs::exists(path)) {
-    why = "missing";
+  std::error_code error;  // a symbolic link loop, a folder without access: said like a missing frame
+  const fs::file_status status = fs::status(path, error);
+  if (error || !fs::is_regular_file(status)) {
+    why = !error ? (fs::exists(status) ? "not a file" : "missing")
+                 : error == std::errc::no_such_file_or_directory ? "missing" : "unreadable (" + error.message() + ")";
     return {};
   }
   cv::Mat frame = read_session_frame(path);

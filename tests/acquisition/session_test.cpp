@@ -221,9 +221,18 @@ TEST_F(RecordedSphere, MissingFramesAreNamedAndTheRestReplayed) {
   const fs::path damaged = copy(scratch);
   fs::remove(damaged / frame_file_name(2, 1));
   fs::remove(damaged / frame_file_name(5, std::nullopt));
+  // A link that loops and a folder in a frame's place were a filesystem
+  // exception (exit 2, "Too many levels of symbolic links") for the whole replay.
+  fs::remove(damaged / frame_file_name(3, 0));
+  fs::create_symlink(damaged / frame_file_name(3, 0), damaged / frame_file_name(3, 0));
+  fs::remove(damaged / frame_file_name(4, 0));
+  fs::create_directory(damaged / frame_file_name(4, 0));
   const ScanResult full = replay_session(read_session(session()));
   const ScanResult partial = replay_session(read_session(damaged));
   expect_problems(partial.problems, {{"step_0002_laser1.png: missing", "step 2 laser 1 skipped"},
+                                     {"step_0003_laser0.png: unreadable (Too many levels of symbolic links)",
+                                      "step 3 laser 0 skipped"},
+                                     {"step_0004_laser0.png: not a file", "step 4 laser 0 skipped"},
                                      {"step_0005_off.png: missing", "step 5 skipped"}});
   EXPECT_EQ(partial.steps_used, kSteps - 1);
   EXPECT_GT(partial.points.cloud.size(), full.points.cloud.size() / 2);
