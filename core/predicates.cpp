@@ -29,4 +29,15 @@ int side_of_oriented_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return static_cast<int>(CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
 }
 
+bool all_coplanar(const Eigen::MatrixX3d& V) {
+  const auto p = [&](Eigen::Index i) { return cgal(Eigen::Vector3d(V.row(i).transpose())); };
+  Eigen::Index b = 1;
+  while (b < V.rows() && V.row(b) == V.row(0)) ++b;
+  Eigen::Index c = b + 1;
+  while (c < V.rows() && CGAL::collinear(p(0), p(b), p(c))) ++c;
+  for (Eigen::Index d = c + 1; d < V.rows(); ++d)
+    if (CGAL::orientation(p(0), p(b), p(c), p(d)) != CGAL::COPLANAR) return false;
+  return true;
+}
+
 }  // namespace scanstation

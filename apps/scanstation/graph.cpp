@@ -6,6 +6,7 @@
 #include "core/io/edge_graph.h"
 #include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
+#include "core/predicates.h"
 #include "core/svg_canvas.h"
 #include "reconstruct/gamma_graph.h"
 #include "reconstruct/geometric_graphs.h"
@@ -98,7 +99,8 @@ class GraphCommand final : public Command {
                       ->delimiter(',');
     auto* type = cli_->add_option("--type", type_,
                                   "cp, nng, emst, rng, gabriel, hull, delaunay; 2D also alpha, beta-lune, beta-circle");
-    cli_->add_option("--param", param_, "α for alpha; b in [-1, 1] for beta-lune / beta-circle (the thesis' β, Def. 2.15–2.16)");
+    cli_->add_option("--param", param_, "α for alpha; b in [-1, 1] for beta-lune / beta-circle (the thesis' β, Def. 2.15–2.16)")
+        ->check(finite_range(-1e300, 1e300));
     cli_->add_option("--format", format_, "Input format, when the extension does not tell");
     gamma->excludes(range)->excludes(type);
     range->excludes(type);
@@ -147,6 +149,11 @@ class GraphCommand final : public Command {
       }
       if (!json) require_mesh_output(output_, "a 3D graph of triangles");
       warn_of_lens_triples(context, V.rows());
+      if (V.rows() >= 4 && all_coplanar(V))
+        context.log->warn("all {} points lie in one plane: each of their triangles has the plane's two half-spaces "
+                          "as empty balls (γ at ±1), so the 3D hull, Delaunay and γ triangle sets of coplanar "
+                          "points overlap in that plane; give the points with two coordinates for the planar graph",
+                          V.rows());
       const Eigen::MatrixX3i T = type_ ? (*type_ == "hull" ? gamma_graph(V, -1.0, 1.0) : gamma_graph(V, GammaRange{}))
                                  : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])
                                                    : gamma_graph(V, GammaRange{range_[0], range_[1], range_[2], range_[3]});

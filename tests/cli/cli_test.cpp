@@ -368,9 +368,21 @@ TEST(Cli, GraphsIn2DAnd3D) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--param: expected b in [-1, 1]"));
   EXPECT_THAT(r.err, testing::HasSubstr("got 1.5"));
+  r = scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --type alpha --param nan");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--param: expected a number"));
+  // Coplanar points in space: every triangle has an empty half-space, which
+  // is said (the overlapping triangles came without a word).
+  {
+    std::ofstream(dir / "flat.xyz") << "0 0 0\n1 0 0\n0 1 0\n1 1.1 0\n0.3 0.5 0\n";
+  }
+  r = scanstation("graph " + path(dir / "flat.xyz") + " -o " + path(dir / "flat.off") + " --type hull");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, testing::HasSubstr("all 5 points lie in one plane"));
   r = scanstation("graph " + path(test::cgal_data("meshes/cactus.off")) + " -o " + path(dir / "c.ply") +
                   " --type hull --report " + path(dir / "c.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, testing::Not(testing::HasSubstr("one plane")));
   EXPECT_GT(nlohmann::json::parse(slurp(dir / "c.json"))["result"]["simplices"].get<int>(), 4);
   // Edge graphs in space: the cactus' 620 vertices joined by 619 tree edges,
   // as OBJ line records and as a PLY edge element.

@@ -66,5 +66,20 @@ TEST(Predicates, CocircularAndCosphericalPointsAreOnTheBoundary) {
   EXPECT_EQ(insphere(Eigen::Vector3d(3, 4 - 1e-15, 0)), 1);
 }
 
+TEST(Predicates, AllCoplanarIsExactWithDuplicatesAndCollinearStarts) {
+  Eigen::MatrixX3d V(6, 3);
+  // A repeated first point and a collinear third before the plane is fixed.
+  V << 0, 0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 0.1, 0.3, 0, 7, -3, 0;
+  EXPECT_TRUE(all_coplanar(V));
+  V(5, 2) = 1e-300;  // the smallest lift is out of the plane, exactly
+  EXPECT_FALSE(all_coplanar(V));
+  // A tilted plane whose points are exact: z = x + y.
+  Eigen::MatrixX3d T(5, 3);
+  T << 0, 0, 0, 1, 0, 1, 0, 1, 1, 0.5, 0.25, 0.75, 3, -2, 1;
+  EXPECT_TRUE(all_coplanar(T));
+  EXPECT_TRUE(all_coplanar(T.topRows(3)));
+  EXPECT_TRUE(all_coplanar(Eigen::MatrixX3d::Ones(4, 3)));  // one point four times
+}
+
 }  // namespace
 }  // namespace scanstation
