@@ -58,7 +58,7 @@ Oscillation oscillation(const BezierSurface& surface, const Eigen::MatrixX3d& V,
   // Blocks of patches on all cores: the same mean for any number of threads.
   constexpr std::size_t kBlock = 4096;
   struct Partial {
-    double max = 0.0, sum = 0.0;
+    double max = 0.0, sum = 0.0, distance = 0.0;
     std::size_t count = 0;
   };
   const auto visit = [&](std::size_t begin, std::size_t end, Partial& part) {
@@ -71,7 +71,8 @@ Oscillation oscillation(const BezierSurface& surface, const Eigen::MatrixX3d& V,
       for (const std::array<double, 10>& row : weights) {
         Eigen::Vector3d x = row[0] * patch[0];
         for (int k = 1; k < 10; ++k) x += row[k] * patch[k];
-        const double relative = (x - closest_on_triangle(x, a, b, c)).norm() / edge_length;
+        const double distance = (x - closest_on_triangle(x, a, b, c)).norm(), relative = distance / edge_length;
+        part.distance = std::max(part.distance, distance);
         part.max = std::max(part.max, relative);
         part.sum += relative;
         ++part.count;
@@ -81,6 +82,7 @@ Oscillation oscillation(const BezierSurface& surface, const Eigen::MatrixX3d& V,
   const auto partial = blockwise<Partial>(surface.patches.size(), kBlock, visit);
   for (const Partial& part : partial) {
     result.max_relative = std::max(result.max_relative, part.max);
+    result.max_distance = std::max(result.max_distance, part.distance);
     result.mean_relative += part.sum;
     count += part.count;
   }

@@ -11,9 +11,13 @@ namespace scanstation {
 /// max_relative  max over samples of dist(sample, its macro triangle) divided
 ///               by that triangle's mean edge length
 /// mean_relative the same, averaged over all samples
+/// max_distance  max over samples of dist(sample, its macro triangle), in the
+///               mesh's units (a bulge on a long edge is small relative to it
+///               but large against the object)
 struct Oscillation {
   double max_relative = 0.0;
   double mean_relative = 0.0;
+  double max_distance = 0.0;
 };
 
 /// surface from a splitting scheme over V (#V by 3), F (#F by 3);

@@ -184,7 +184,9 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
               {"shared_edges", s.g1.shared_edges},
               {"samples", s.g1.samples},
               {"unmatched_edges", s.g1.unmatched_edges}}},
-      {"oscillation", {{"max_relative", s.oscillation.max_relative}, {"mean_relative", s.oscillation.mean_relative}}}};
+      {"oscillation", {{"max_relative", s.oscillation.max_relative},
+                        {"mean_relative", s.oscillation.mean_relative},
+                        {"max_distance", s.oscillation.max_distance}}}};
   if (std::isfinite(options.max_move)) report["max_move"] = options.max_move;
   if (!options.given_normals && options.fitted_neighbours > 0) {
     report["normals"] = "fitted";

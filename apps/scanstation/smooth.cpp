@@ -184,6 +184,18 @@ class SmoothCommand final : public Command {
                   "below %g°)\n",
                   smoothed.two_split_triangles, smoothed.two_split_pairs, smoothed.adjacent_two_split_pairs,
                   smoothed.two_split_candidates, min_angle_);
+    // A bulge is what a user sees first (CGAL's corner tetrahedron: a surface
+    // five times the solid's size, exit 0 with no word): say it when the
+    // surface strays from a triangle by more than that triangle's edges and
+    // by more than a twentieth of the mesh (a coarse mesh's own rounding,
+    // under both, is no bulge).
+    const double stray = result["oscillation"]["max_distance"].get<double>();
+    const double size = (mesh.vertices.positions.colwise().maxCoeff() - mesh.vertices.positions.colwise().minCoeff()).norm();
+    if (stray > 0.05 * size && result["oscillation"]["max_relative"].get<double>() > 1.0)
+      context.log->warn("the surface strays up to {:.3g} ({:.0f}% of the mesh's size) from its triangles: a bulge at "
+                        "nearly dependent G¹ equations{}",
+                        stray, 100.0 * stray / size,
+                        max_move_ ? " or long macro edges" : "; --max-move 1 bounds the control points' moves");
     if (smoothed.sign_condition_violations > 0 || !surface.dependent_edges.empty())
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
                   "equations (largest normal angle %.3g rad elsewhere)\n",
