@@ -21,9 +21,11 @@ namespace scanstation {
 /// squares plane through those of its nearest vertices (a CGAL k-d tree)
 /// that lie on the same side of the surface — their area-weighted face
 /// normals (§9.4, method 1) less than 90° from its own — turned to the side
-/// of its own; that face normal itself where fewer than three remain or
-/// they lie on one line, and zero for a vertex in no face, as
-/// vertex_normals gives. Throws InvalidInput for a neighbour count out of
+/// of its own; that face normal itself where fewer than three remain, where
+/// they lie on one line, or where the fitted plane turns more than 45° from
+/// it (the vertex's faces are not the sampled surface there: a hull face
+/// over space the scan never saw, a sharp edge), and zero for a vertex in no
+/// face, as vertex_normals gives. Throws InvalidInput for a neighbour count out of
 /// range.
 Eigen::MatrixX3d fitted_vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int neighbours = 16);
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace scanstation {
 namespace {
@@ -74,6 +75,49 @@ TEST(FittedNormals, KeepTheFacesOfAThinPlateApart) {
     EXPECT_GT(std::abs(N(v, 2)), std::cos(5.0 * std::numbers::pi / 180)) << "vertex " << v;
   }
   EXPECT_GT(faces_checked, 100);
+}
+
+// A scanned bowl seen from the side: a densely sampled wall closed at the
+// top by a fan of long hull faces over the unseen inside. The plane fitted
+// at a rim vertex is the wall's (its nearest vertices are all on the wall),
+// 90° from the lid; the six-split's patches over the lid then folded out
+// into flaps 20% of the object's size. The face normals stand there; the
+// wall keeps its fitted normals.
+TEST(FittedNormals, GiveWayToTheFacesWhereTheyTurnAwayFromThem) {
+  constexpr int around = 40, rings = 25;
+  TriangleMesh can;
+  Eigen::MatrixX3d& V = can.vertices.positions;
+  V.resize(around * rings + 2, 3);
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < around; ++k) {
+      const double a = 2 * std::numbers::pi * k / around;
+      V.row(r * around + k) << std::cos(a), std::sin(a), 0.04 * r;  // the wall, 0.04 apart
+    }
+  const int bottom = around * rings, top = bottom + 1;
+  V.row(bottom) << 0, 0, 0;
+  V.row(top) << 0, 0, 0.04 * (rings - 1);
+  std::vector<Eigen::Vector3i> faces;
+  for (int r = 0; r + 1 < rings; ++r)
+    for (int k = 0; k < around; ++k) {
+      const int a = r * around + k, b = r * around + (k + 1) % around;
+      faces.emplace_back(a, b, b + around);
+      faces.emplace_back(a, b + around, a + around);
+    }
+  for (int k = 0; k < around; ++k) {
+    faces.emplace_back(bottom, (k + 1) % around, k);
+    faces.emplace_back(top, (rings - 1) * around + k, (rings - 1) * around + (k + 1) % around);
+  }
+  can.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) can.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  const Eigen::MatrixX3d area = vertex_normals(V, can.faces, NormalWeighting::area);
+  const Eigen::MatrixX3d N = fitted_vertex_normals(V, can.faces, 16);
+  for (int k = 0; k < around; ++k) {
+    const Eigen::Index rim = (rings - 1) * around + k, wall = (rings / 2) * around + k;
+    const Eigen::RowVector3d radial(V(rim, 0), V(rim, 1), 0.0);
+    EXPECT_GT(angle(area.row(rim), radial), std::numbers::pi / 4) << k;  // the lid's faces outweigh the wall's
+    EXPECT_LT(angle(N.row(rim), area.row(rim)), 1e-12) << k;
+    EXPECT_LT(angle(N.row(wall), radial), std::numbers::pi / 180) << k;
+  }
 }
 
 TEST(FittedNormals, ZeroOffTheSurfaceAndANeighbourCountInRange) {
