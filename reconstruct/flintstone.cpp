@@ -1,11 +1,14 @@
 #include "reconstruct/flintstone.h"
 
+#include "core/errors.h"
 #include "core/predicates.h"
 
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 namespace scanstation {
 
@@ -254,6 +257,24 @@ bool segment_misses(const Flintstone<D>& f, const Vec<D>& a, const Vec<D>& b) {
                     : segment_misses(f.first, a, b) || segment_misses(f.second, a, b);
 }
 
+template <int D>
+void require_ball_range(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, const char* what) {
+  if (V.rows() == 0) return;
+  // The largest coordinate and the box's largest side: the ball computations
+  // (the smallest enclosing balls, the flintstones' keys) reach fourth
+  // powers of lengths. Measured: a triangle builds from 1e-60 to 1e77 across
+  // and is refused beyond; the limits keep a margin.
+  const double largest = V.cwiseAbs().maxCoeff();
+  const double side = (V.colwise().maxCoeff() - V.colwise().minCoeff()).maxCoeff();
+  constexpr double kHigh = 1e70, kLow = 1e-50;
+  if (largest > kHigh || (side > 0.0 && side < kLow)) {
+    char magnitude[32];
+    std::snprintf(magnitude, sizeof magnitude, "%.3g", largest > kHigh ? largest : side);
+    throw InvalidInput(std::string("flintstone tree: the ") + what + (largest > kHigh ? "'s coordinates reach " : " spans only ") +
+                       magnitude + ", beyond what its ball computations hold (sizes 1e-50 to 1e70): scale it first");
+  }
+}
+
 #define SCANSTATION_FLINTSTONE(D)                                                                                 \
   template Flintstone<D> flintstone_of<D>(const Eigen::Matrix<double, Eigen::Dynamic, D>&,                        \
                                           const std::array<int, D>&, const std::vector<int>&, int&,               \
@@ -264,7 +285,8 @@ bool segment_misses(const Flintstone<D>& f, const Vec<D>& a, const Vec<D>& b) {
   template bool balls_meet<D>(const SignedBall<D>&, const SignedBall<D>&);                                        \
   template Flintstone<D> ball_flintstone<D>(const Vec<D>&, double);                                               \
   template Flintstone<D> enclosing_flintstone<D>(const Eigen::Matrix<double, Eigen::Dynamic, D>&,                 \
-                                                 const std::vector<int>&);
+                                                 const std::vector<int>&);                                        \
+  template void require_ball_range<D>(const Eigen::Matrix<double, Eigen::Dynamic, D>&, const char*);
 SCANSTATION_FLINTSTONE(2)
 SCANSTATION_FLINTSTONE(3)
 #undef SCANSTATION_FLINTSTONE

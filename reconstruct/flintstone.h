@@ -97,4 +97,11 @@ Flintstone<D> ball_flintstone(const Eigen::Matrix<double, D, 1>& center, double 
 template <int D>
 Flintstone<D> enclosing_flintstone(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, const std::vector<int>& members);
 
+/// Throws InvalidInput when V's coordinates lie beyond what the flintstones'
+/// ball computations hold, coordinates above 1e70 or sizes below 1e-50:
+/// they reach fourth powers of lengths (a polygon at 1e300 was said to have
+/// all its vertices coincide). `what` names the boundary ("polygon", "mesh").
+template <int D>
+void require_ball_range(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, const char* what);
+
 }  // namespace scanstation

@@ -105,6 +105,7 @@ std::size_t FlintstoneTree2::storage_bytes() const {
 FlintstoneTree2 flintstone_tree(const Polygon2& polygon) {
   const int n = static_cast<int>(polygon.size());
   if (n < 3) throw InvalidInput("flintstone tree: a polygon needs at least 3 vertices, got " + std::to_string(n));
+  require_ball_range<2>(polygon.vertices, "polygon");
   FlintstoneTree2 tree;
   tree.vertices = polygon.vertices;
   // Smallest bounding disc; its two touching vertices farthest apart give the

@@ -663,6 +663,7 @@ std::size_t FlintstoneTree3::storage_bytes() const {
 
 FlintstoneTree3 flintstone_tree(const TriangleMesh& mesh, const FlintstoneOptions3& options) {
   if (mesh.face_count() == 0) throw InvalidInput("flintstone tree: the mesh has no faces");
+  require_ball_range<3>(mesh.vertices.positions, "mesh");
   // The root's three cut paths (§7.3.2) split one closed surface in two:
   // with several parts, or parts sharing only a vertex, they cannot, and the
   // refinement would run past the faces it was given. Open or non-manifold

@@ -145,6 +145,16 @@ TEST(FlintstoneTree2, DegeneratePolygons) {
   }
   test::expect_error<InvalidInput>([] { flintstone_tree(Polygon2{Eigen::MatrixX2d(2, 2)}); }, {"at least 3"});
   test::expect_error<InvalidInput>([] { flintstone_tree(Polygon2{Eigen::MatrixX2d::Ones(4, 2)}); }, {"coincide"});
+  // Beyond the balls' range the distinct vertices of a polygon were said to
+  // coincide; the message now names the scale.
+  const Polygon2 unit{(Eigen::MatrixX2d(3, 2) << 0, 0, 1, 0, 0, 1).finished()};
+  test::expect_error<InvalidInput>([&] { flintstone_tree(Polygon2{unit.vertices * 1e300}); },
+                                   {"coordinates reach 1e+300", "scale it first"});
+  test::expect_error<InvalidInput>([&] { flintstone_tree(Polygon2{unit.vertices * 1e-300}); },
+                                   {"spans only 1e-300", "scale it first"});
+  test::expect_error<InvalidInput>([&] { flintstone_tree(Polygon2{unit.vertices * 1e100}); }, {"1e+100"});
+  expect_valid_tree(flintstone_tree(Polygon2{unit.vertices * 1e60}), "1e60");
+  expect_valid_tree(flintstone_tree(Polygon2{unit.vertices * 1e-40}), "1e-40");
 }
 
 TEST(FlintstoneApproximation2, LevelsRefineUpToTheOriginal) {

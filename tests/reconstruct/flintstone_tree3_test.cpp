@@ -135,6 +135,11 @@ TEST(FlintstoneTree3, GeneratedShapesAtAnyScale) {
     expect_valid_tree(tree, what);
     expect_inclusion_matches_brute_force(tree, mesh, 1200, what);
   }
+  // Beyond the balls' range: named, not "all vertices coincide".
+  test::expect_error<InvalidInput>([] { flintstone_tree(scaled(sim::icosphere(1), 1e200, Eigen::Vector3d::Zero())); },
+                                   {"mesh's coordinates reach 1e+200", "scale it first"});
+  test::expect_error<InvalidInput>([] { flintstone_tree(scaled(sim::icosphere(1), 1e-200, Eigen::Vector3d::Zero())); },
+                                   {"mesh spans only 2e-200", "scale it first"});
   for (const double threshold : {0.0, 0.6}) {
     const TriangleMesh mesh = sim::icosphere(3);
     const FlintstoneTree3 tree = flintstone_tree(mesh, {threshold});
