@@ -5,6 +5,8 @@
 #include "sim/shapes.h"
 #include "sim/surface_of_revolution.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace scanstation::sim {
@@ -65,6 +67,14 @@ ScanObject scan_object(const std::string& name_or_file, double max_radius, doubl
   object.scale = std::min(max_radius / radius, max_height / height);
   object.translation = -object.scale * Eigen::Vector3d(axis.x(), axis.y(), low.z());
   mesh.vertices.positions = ((P * object.scale).rowwise() + object.translation.transpose()).eval();
+  // Sizes near the doubles' limits (1e308 across: an infinite radius and a
+  // zero scale) cannot be placed; the scan blamed its own manifest for it.
+  if (!std::isfinite(object.scale) || !(object.scale > 0) || !mesh.vertices.positions.allFinite()) {
+    char size[64];
+    std::snprintf(size, sizeof size, "%.3g across and %.3g high", 2 * radius, height);
+    throw InvalidInput(name_or_file + ": the mesh is " + size + ", too far from the platter's " +
+                       std::to_string(static_cast<int>(2 * max_radius)) + " mm to be scaled onto it");
+  }
   mesh.vertices.normals.resize(0, 3);
   object.on_platter = std::move(mesh);
   return object;

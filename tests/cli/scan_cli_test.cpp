@@ -355,6 +355,13 @@ TEST(ScanCli, UnknownObjectsAndMissingSessionsAreRefusedClearly) {
   const Outcome unknown = scanstation("scan --object teapot -o " + (dir / "t").string());
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_THAT(unknown.err, testing::HasSubstr("--object 'teapot': neither a built-in object"));
+  // A mesh near the doubles' limits is named; the scan blamed its own new
+  // manifest ("object.placement.scale: expected a positive number").
+  std::ofstream(dir / "huge.off") << "OFF\n4 4 0\n0 0 0\n1e308 0 0\n0 1e308 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const Outcome huge = scanstation("scan --object " + (dir / "huge.off").string() + " --steps 2 -o " + (dir / "h").string());
+  EXPECT_EQ(huge.exit_code, 1);
+  EXPECT_THAT(huge.err, testing::HasSubstr("huge.off: the mesh is inf across"));
+  EXPECT_THAT(huge.err, testing::HasSubstr("to be scaled onto it"));
   const Outcome none = scanstation("replay " + (dir / "nothing").string());
   EXPECT_EQ(none.exit_code, 1);
   EXPECT_THAT(none.err, testing::HasSubstr("manifest.json: missing"));
