@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <system_error>
 #include <utility>
 
 namespace scanstation::io {
@@ -57,6 +58,8 @@ FileFormat resolve_format(const std::filesystem::path& path, const std::optional
     throw InvalidInput("unknown format '" + *override_name + "': expected one of xyz, ply, off, obj, stl, svg");
   }
   if (const auto format = format_from_extension(path)) return *format;
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InvalidInput(path.string() + ": is a folder, expected a file");
   throw InvalidInput(path.string() + ": cannot tell the format from the extension '" + path.extension().string() +
                      "': expected .xyz/.xy/.txt/.csv/.pwn, .ply, .off, .obj, .stl or .svg (or give --format)");
 }

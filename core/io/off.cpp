@@ -149,7 +149,8 @@ void read_vertices(TextLines& lines, const OffHeader& header, OffData& data) {
     if (header.colors) read_color(line, i, data.colors);
     if (!line.tokens.at_end())
       line.fail("unexpected " + quoted(line.tokens.next()) + " after vertex " + std::to_string(i) +
-                (header.colors ? "" : " (colours need the keyword 'COFF')"));
+                (header.colors ? " (" : " (colours need the keyword 'COFF'; or ") + "the header's count of " +
+                std::to_string(header.vertex_count) + " vertices is more than the file holds, and the faces start here)");
   }
 }
 

@@ -3,6 +3,7 @@
 #include "core/io/number_text.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace scanstation::io {
 
@@ -14,7 +15,19 @@ constexpr std::size_t kProgressStride = std::size_t{1} << 20;  // report every M
 std::string quoted(std::string_view token) {
   constexpr std::size_t kMax = 40;
   std::string s = "'";
-  s += token.size() > kMax ? std::string(token.substr(0, kMax)) + "..." : std::string(token);
+  // Control bytes are written as \xNN: a NUL cut the message short on the
+  // terminal, and others garble it.
+  for (const char c : token.substr(0, kMax)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char escaped[5];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      s += escaped;
+    } else {
+      s += c;
+    }
+  }
+  if (token.size() > kMax) s += "...";
   s += "'";
   return s;
 }

@@ -82,7 +82,8 @@ class TextLines {
   std::string_view line_;
 };
 
-/// Quotes a token for an error message, shortened when long.
+/// Quotes a token for an error message, shortened when long, control bytes
+/// written as \xNN.
 std::string quoted(std::string_view token);
 
 }  // namespace scanstation::io

@@ -1,5 +1,6 @@
 #include "core/errors.h"
 #include "core/io/file_access.h"
+#include "core/io/file_format.h"
 #include "test_support.h"
 
 #include <atomic>
@@ -81,6 +82,8 @@ TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
   expect_error<InvalidInput>([&] { read_file(dir.path()); }, {"folder"});
   // /dev/zero never ends: it was read until memory ran out.
   expect_error<InvalidInput>([&] { read_file("/dev/zero"); }, {"/dev/zero", "is a device"});
+  // A folder without an extension is named as a folder, not as an unknown format.
+  expect_error<InvalidInput>([&] { resolve_format(dir.path(), std::nullopt); }, {"is a folder, expected a file"});
   expect_error<InvalidInput>([&] { check_writable(dir.path(), Overwrite::replace); }, {"folder"});
 }
 

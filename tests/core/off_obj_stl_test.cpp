@@ -432,11 +432,18 @@ TEST(OffErrors, BadNumbers) {
   EXPECT_THAT(off_error("COFF\n1 0 0\n0 0 0 300 0 0\n"), AllOf(HasSubstr("x.off:3"), HasSubstr("colour")));
   EXPECT_THAT(off_error("COFF\n1 0 0\n0 0 0 1.5 0 0\n"), AllOf(HasSubstr("x.off:3"), HasSubstr("0..1")));
   EXPECT_THAT(off_error("NOFF\n1 0 0\n0 0 0 0 1\n"), AllOf(HasSubstr("x.off:3"), HasSubstr("normal z")));
+  // A NUL inside a token cut the message short on the terminal.
+  EXPECT_THAT(off_error(std::string("OFF\n1 0 0\n1.0\0""0.0 0 0\n", 22)), HasSubstr("found '1.0\\x000.0'"));
 }
 
 TEST(OffErrors, ExtraTokensOnPlainVertexLine) {
   EXPECT_THAT(off_error("OFF\n1 0 0\n0 0 0 255 0 0\n"),
               AllOf(HasSubstr("x.off:3"), HasSubstr("'255'"), HasSubstr("vertex 0")));
+  // A header that promises more vertices than the file holds: its faces are
+  // read as vertices, and the hint names the count, not only colours.
+  EXPECT_THAT(off_error("OFF\n5 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+              AllOf(HasSubstr("x.off:6"), HasSubstr("after vertex 3"), HasSubstr("'COFF'"),
+                    HasSubstr("the header's count of 5 vertices is more than the file holds")));
 }
 
 TEST(OffErrors, BadFaces) {
