@@ -42,7 +42,7 @@ class Section {
     const toml::node* node = table_.get(key);
     if (!node) return fallback;
     const auto value = node->value<double>();
-    if (!value || *value < minimum || *value > maximum)
+    if (!value || !(*value >= minimum && *value <= maximum))  // nan fails both comparisons
       fail(*node, name(key) + ": expected a number in [" + format(minimum) + ", " + format(maximum) + "]");
     return *value;
   }
@@ -96,14 +96,14 @@ class Section {
   }
   const toml::table& raw() const { return table_; }
   const std::filesystem::path& file() const { return file_; }
-
- private:
   static std::string format(double v) {
     std::string s = std::to_string(v);
     s.erase(s.find_last_not_of('0') + 1);
     if (s.back() == '.') s.pop_back();
     return s;
   }
+
+ private:
   const toml::table& table_;
   std::string path_;
   const std::filesystem::path& file_;
@@ -164,6 +164,11 @@ TurntableRole read_turntable(const Section& s, const std::string& default_chip) 
   c.home_speed_deg_s = s.number("home_speed_deg_s", c.home_speed_deg_s, 1e-3, 1e5);
   c.home_overtravel_deg = s.number("home_overtravel_deg", c.home_overtravel_deg, 0.0, 360.0);
   c.settle = milliseconds(s.number("settle_ms", 100.0, 0.0, 60000.0));
+  // A turn of a few (micro)steps cannot place a scan's steps, and the
+  // simulated home switch (8 microsteps wide) needs more than its width.
+  if (const double per_turn = c.full_steps_per_rev * c.microsteps * c.gear_ratio; !(per_turn >= 16))
+    s.fail(s.raw(), s.name("full_steps_per_rev") + " × microsteps × gear_ratio: " + Section::format(per_turn) +
+                        " steps per turn, at least 16 expected");
   if (table.backend == "gpio") {
     const std::string chip = s.text("chip", default_chip);
     for (const auto& [key, line] : {std::pair{"step", &table.step}, {"dir", &table.direction}, {"enable", &table.enable}}) {

@@ -50,6 +50,12 @@ TEST(StationDescription, MistakesNameFileLineAndField) {
   check("[turntable]\nbackend = \"gpio\"\nstep = 1\ndir = 2\n", {"turntable.enable", "step, dir and enable"});
   check("[[laser]]\nbackend = \"gpio\"\nline = 1.5\n", {":3", "laser[0].line", "offset"});
   check("[camera\n", {"station.toml:1"});
+  // nan fails every comparison: it passed the range checks and reached the
+  // simulator (an assertion in the ray tracer, exit 134, for the table angle).
+  check("[sim]\ntable_angle_deg = nan\n", {"station.toml:2", "sim.table_angle_deg", "number in [-1000000, 1000000]"});
+  check("[turntable]\ngear_ratio = nan\n", {":2", "turntable.gear_ratio"});
+  check("[[laser]]\nsettle_ms = nan\n", {":2", "laser[0].settle_ms"});
+  check("[turntable]\nfull_steps_per_rev = 1\nmicrosteps = 1\n", {"1 steps per turn, at least 16"});
   test::expect_error<InvalidInput>([&] { read_station(folder / "missing.toml"); }, {"does not exist"});
 }
 
