@@ -417,6 +417,10 @@ SessionRecorder::~SessionRecorder() {
 
 SessionRecorder SessionRecorder::create(const fs::path& folder, const SessionManifest& manifest,
                                         io::Overwrite overwrite) {
+  // Before anything is removed: --force with a file in the folder's place
+  // failed inside the removal with the filesystem's own text.
+  if (std::error_code error; fs::exists(folder, error) && !fs::is_directory(folder, error))
+    throw InvalidInput(folder.string() + ": is a file, expected a session folder");
   if (overwrite == io::Overwrite::refuse && (fs::exists(folder / kManifest) || fs::exists(folder / kJournal)))
     throw InvalidInput(folder.string() + ": holds a session already; continue it with --resume, or use --force to "
                        "start over");

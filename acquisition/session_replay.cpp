@@ -116,7 +116,12 @@ std::optional<StereoStepFrames> load_stereo_step(const SessionContents& session,
 }  // namespace
 
 cv::Mat read_session_frame(const fs::path& file) {
-  cv::Mat frame = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  cv::Mat frame;
+  try {
+    frame = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {  // a header beyond OpenCV's limits: unreadable, as any other
+    return {};
+  }
   // An image editor may save a frame with an alpha channel: the colour is the frame.
   if (frame.type() == CV_8UC4) cv::cvtColor(frame, frame, cv::COLOR_BGRA2BGR);
   return frame;

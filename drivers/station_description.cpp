@@ -1,6 +1,7 @@
 #include "drivers/station_description.h"
 
 #include "core/errors.h"
+#include "core/io/file_access.h"
 
 #include <algorithm>
 #include <set>
@@ -207,9 +208,12 @@ StationDescription simulated_stereo_station() {
 
 StationDescription read_station(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) throw InvalidInput("station file " + file.string() + " does not exist");
+  // Read as any input (a folder or a device is named): toml++ read a folder
+  // as an empty file, and the default station was used under its name.
+  const std::string text = io::read_file(file);
   toml::table root;
   try {
-    root = toml::parse_file(file.string());
+    root = toml::parse(text, file.string());
   } catch (const toml::parse_error& e) {
     throw FormatError(FileLocation::at_line(file, e.source().begin.line), std::string(e.description()));
   }

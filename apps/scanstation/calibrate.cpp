@@ -89,9 +89,14 @@ class CalibrateCommand final : public Command {
   }
 
   void run(CommandContext& context) override {
-    if (std::sscanf(board_text_.c_str(), "%dx%d", &board_.width, &board_.height) != 2 || board_.width < 2 ||
-        board_.height < 2)
-      throw InvalidInput("--board " + board_text_ + ": expected COLUMNSxROWS inner corners, e.g. 9x6");
+    // Read whole: sscanf took "9x6x2", "9x6 junk" and a wrapped 4294967305x6
+    // as 9x6. OpenCV's corner finder needs at least 3 corners each way.
+    const std::size_t x = board_text_.find('x');
+    const auto columns = parse_whole<int>(board_text_.substr(0, x));
+    const auto rows = x == std::string::npos ? std::nullopt : parse_whole<int>(board_text_.substr(x + 1));
+    if (!columns || !rows || *columns < 3 || *rows < 3 || *columns > 100 || *rows > 100)
+      throw InvalidInput("--board " + board_text_ + ": expected COLUMNSxROWS inner corners, 3 to 100 each, e.g. 9x6");
+    board_ = cv::Size(*columns, *rows);
     sim_ = station_.backend == "sim";
     const std::string part = cli_->get_subcommands().front()->get_name();
     // Without --station, the simulated stereo pair is the built-in stereo station's (`scan --rig stereo`).
@@ -301,7 +306,9 @@ class CalibrateCommand final : public Command {
     sub.add_option("--lowest-corner-height", lowest_corner_height_,
                    "Height of the board's lowest inner corner above the platter top (mm)")
         ->check(finite_range(-1e6, 1e6));
-    sub.add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")->capture_default_str();
+    sub.add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")
+        ->check(CLI::Range(1, 360))
+        ->capture_default_str();
   }
 
   // The turntable angle of each of `count` images (radians), from --angles or --step.

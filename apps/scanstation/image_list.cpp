@@ -53,10 +53,20 @@ std::vector<std::filesystem::path> expand_images(const std::vector<std::string>&
   return images;
 }
 
-cv::Mat read_grey_image(const std::filesystem::path& path, cv::Size size) {
+cv::Mat read_image(const std::filesystem::path& path, int flags) {
   if (!std::filesystem::exists(path)) throw InvalidInput(path.string() + ": no such file");
-  const cv::Mat image = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+  cv::Mat image;
+  try {
+    image = cv::imread(path.string(), flags);
+  } catch (const cv::Exception& e) {  // a header beyond OpenCV's limits: its assertion text
+    throw InvalidInput(path.string() + ": not an image OpenCV can read (" + e.err + ")");
+  }
   if (image.empty()) throw InvalidInput(path.string() + ": not an image OpenCV can read (expected PNG, JPEG, ...)");
+  return image;
+}
+
+cv::Mat read_grey_image(const std::filesystem::path& path, cv::Size size) {
+  const cv::Mat image = read_image(path, cv::IMREAD_GRAYSCALE);
   if (image.size() != size)
     throw InvalidInput(path.string() + ": " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
                        " pixels, but the station's camera delivers " + std::to_string(size.width) + "x" +

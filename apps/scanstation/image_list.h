@@ -15,6 +15,11 @@ namespace scanstation::app {
 /// Throws InvalidInput naming a missing path or an empty folder.
 std::vector<std::filesystem::path> expand_images(const std::vector<std::string>& arguments);
 
+/// An image read with cv::imread `flags`; throws InvalidInput naming the file
+/// when it is missing or unreadable, a header OpenCV refuses (a PGM claiming
+/// 99999999 pixels a side) included.
+cv::Mat read_image(const std::filesystem::path& path, int flags);
+
 /// An 8-bit grey image; throws InvalidInput naming the file when it is
 /// missing, unreadable, or not `size` (the station camera's frame size).
 cv::Mat read_grey_image(const std::filesystem::path& path, cv::Size size);

@@ -12,6 +12,7 @@
 #include "core/bounding_box.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "image_list.h"
 #include "sim/sampling.h"
 #include "sim/scan_objects.h"
 #include "sim/stereo_rig.h"
@@ -27,13 +28,6 @@
 namespace scanstation::app {
 
 namespace {
-
-cv::Mat read_image(const std::filesystem::path& path, int flags) {
-  if (!std::filesystem::exists(path)) throw InvalidInput(path.string() + ": no such file");
-  cv::Mat image = cv::imread(path.string(), flags);
-  if (image.empty()) throw InvalidInput(path.string() + ": not an image OpenCV can read (expected PNG, JPEG, ...)");
-  return image;
-}
 
 std::string size_text(const cv::Mat& image) { return std::to_string(image.cols) + "x" + std::to_string(image.rows); }
 

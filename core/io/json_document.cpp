@@ -37,6 +37,8 @@ nlohmann::json read_json_document(const std::filesystem::path& file) {
     const auto end = text.begin() + static_cast<std::ptrdiff_t>(before);
     const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), end, '\n'));
     throw FormatError(FileLocation::at_line(file, line), "not valid JSON: " + parse_problem(e.what()));
+  } catch (const nlohmann::json::exception& e) {  // a number beyond the doubles ("1e999"): out_of_range
+    throw FormatError(FileLocation::whole(file), "not valid JSON: " + parse_problem(e.what()));
   }
 }
 

@@ -99,6 +99,16 @@ TEST(CalibrateCli, OrderAndInputsAreCheckedWithClearMessages) {
   r = scanstation("calibrate camera --board 9 " + kOpenCvData + "left01.jpg -o " + file);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--board 9: expected COLUMNSxROWS"));
+  // Read whole and at least 3 each way: "9x6x2" was taken as 9x6, and 2x2
+  // reached OpenCV's assertion (exit 2).
+  for (const std::string board : {"9x6x2", "4294967305x6", "2x2"}) {
+    r = scanstation("calibrate camera --board " + board + " " + kOpenCvData + "left01.jpg -o " + file);
+    EXPECT_EQ(r.exit_code, 1) << board;
+    EXPECT_THAT(r.err, testing::HasSubstr("--board " + board + ": expected COLUMNSxROWS inner corners, 3 to 100"));
+  }
+  r = scanstation("calibrate turntable --backend sim --views 100000000 -o " + file);  // it ran out of memory
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--views"));
   // Placing a stereo pair on the turntable from images needs the platter's height and the angles.
   r = scanstation("calibrate stereo --left " + kOpenCvData + "left01.jpg --right " + kOpenCvData +
                   "right01.jpg --turntable " + kOpenCvData + "left02.jpg --step 10 -o " + file);

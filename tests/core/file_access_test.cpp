@@ -1,6 +1,7 @@
 #include "core/errors.h"
 #include "core/io/file_access.h"
 #include "core/io/file_format.h"
+#include "core/io/json_document.h"
 #include "test_support.h"
 
 #include <atomic>
@@ -84,6 +85,25 @@ TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
   expect_error<InvalidInput>([&] { read_file("/dev/zero"); }, {"/dev/zero", "is a device"});
   // A folder without an extension is named as a folder, not as an unknown format.
   expect_error<InvalidInput>([&] { resolve_format(dir.path(), std::nullopt); }, {"is a folder, expected a file"});
+}
+
+// JSON documents: what is wrong, where, in words of the file (nlohmann's
+// exception tags and its out_of_range for "1e999" reached the terminal).
+TEST(ReadJsonDocument, ProblemsNameTheFileAndLine) {
+  ScratchFolder dir;
+  std::ofstream(dir / "empty.json") << " \n";
+  expect_error<InvalidInput>([&] { read_json_document(dir / "empty.json"); }, {"empty.json: file is empty"});
+  std::ofstream(dir / "cut.json") << "{\n  \"a\": [1,\n";
+  expect_error<InvalidInput>([&] { read_json_document(dir / "cut.json"); }, {"cut.json:3: not valid JSON: column"});
+  std::ofstream(dir / "huge.json") << "{\"fx\": 1e999}\n";
+  expect_error<InvalidInput>([&] { read_json_document(dir / "huge.json"); },
+                             {"huge.json: not valid JSON: number overflow parsing '1e999'"});
+  for (const char* name : {"empty.json", "cut.json", "huge.json"})
+    try {
+      read_json_document(dir / name);
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(std::string(e.what()).find("json.exception"), std::string::npos) << e.what();
+    }
   expect_error<InvalidInput>([&] { check_writable(dir.path(), Overwrite::replace); }, {"folder"});
 }
 
