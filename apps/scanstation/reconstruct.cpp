@@ -140,7 +140,7 @@ class ReconstructCommand final : public Command {
         ->check(CLI::IsMember({"auto", "gamma", "min-area-change", "area-and-gamma", "voronoi-skeleton"}))
         ->capture_default_str();
     cli_->add_option("--seeds", seeds_, "voronoi-skeleton: at most this many seed cells (all when fewer)")
-        ->check(CLI::PositiveNumber)
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40))
         ->capture_default_str();
     cli_->add_option("--keep", keep_,
                      "Faces that must stay on the boundary (§5.7): a text file, one face per line as 0-based indices "
@@ -181,7 +181,7 @@ class ReconstructCommand final : public Command {
     read_timer.stop();
     options_.constriction.progress = context.progress.stage("constrict");
     const io::WriteOptions write{std::nullopt, std::nullopt, context.overwrite};
-    if (keep_) options_.constriction.keep = io::read_index_list(*keep_, cloud.dimension == 2 ? 2 : 3);
+    if (keep_) options_.constriction.keep = io::read_index_list(*keep_, cloud.dimension == 2 ? 2 : 3, cloud.size());
     if (method_ == "min-area-change") options_.constriction.criterion = ConstrictionCriterion::minimal_area_change;
     if (method_ == "area-and-gamma" || (method_ == "auto" && cloud.dimension == 3))
       options_.constriction.criterion = ConstrictionCriterion::area_change_and_gamma;
@@ -276,7 +276,7 @@ class ReconstructCommand final : public Command {
     const auto comma = guide_.find(',');
     const auto c1 = io::parse_double(guide_.substr(0, comma));
     const auto c0 = comma == std::string::npos ? std::optional<double>(0.0) : io::parse_double(guide_.substr(comma + 1));
-    if (!c1 || !c0 || std::abs(*c1) > 1.0 || std::abs(*c0) > 1.0)
+    if (!c1 || !c0 || !(std::abs(*c1) <= 1.0) || !(std::abs(*c0) <= 1.0))  // nan fails both
       throw InvalidInput("--guide: expected C1[,C0] with values in [-1, 1], or off; got '" + guide_ + "'");
     options_.guide = GuideOptions{*c1, *c0};
   }

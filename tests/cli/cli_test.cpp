@@ -342,6 +342,22 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "keep.txt"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("keep.txt:2"));
+  // An index past the points and a face given twice are named at their line
+  // (they were "kept face 0: point index … out of range" with no file, and
+  // "not a face of the Delaunay triangulation").
+  {
+    std::ofstream(dir / "far.txt") << "0 1 2\n0 1 9999999\n";
+    std::ofstream(dir / "twice.txt") << "# faces\n0 1 2\n\n2 0 1\n";
+  }
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "far.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::ContainsRegex("far.txt:2: expected vertex index 3 of 3 in \\[0, [0-9]+\\], found 9999999"));
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "twice.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("twice.txt:4: the same indices as line 2"));
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --guide nan,0");  // nan passed the range
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--guide: expected C1[,C0] with values in [-1, 1]"));
 }
 
 TEST(Cli, GraphsIn2DAnd3D) {
