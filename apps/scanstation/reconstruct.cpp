@@ -164,6 +164,17 @@ class ReconstructCommand final : public Command {
   void run(CommandContext& context) override {
     io::check_output_file(output_, context.overwrite);
     if (svg_) io::check_output_file(*svg_, context.overwrite);
+    // Two outputs in one file: the later one was kept without a word.
+    const auto same = [](const std::filesystem::path& a, const std::filesystem::path& b) {
+      return a.lexically_normal() == b.lexically_normal();
+    };
+    if ((svg_ && same(*svg_, output_)) || (interior_ && same(*interior_, output_)) ||
+        (svg_ && interior_ && same(*svg_, *interior_)))
+      throw InvalidInput("-o, --svg and --interior must name different files");
+    // A point format would keep the interior's points and drop its triangles.
+    if (interior_ && interior_->extension() != ".vtk" && !io::stores_faces(io::resolve_format(*interior_, std::nullopt)))
+      throw InvalidInput("--interior " + interior_->string() + ": the interior's triangles need .vtk or a mesh format "
+                         "(ply, off, obj, stl)");
     options_.constriction.until_indicator = until_;
     if (flips_ == "off") options_.flips.reset();
     if (flips_ == "area") options_.flips = FlipCriterion::area;

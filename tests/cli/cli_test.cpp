@@ -355,6 +355,14 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "twice.txt"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("twice.txt:4: the same indices as line 2"));
+  // Two outputs in one file kept only the later; a point format kept the
+  // interior's points and dropped its triangles.
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "same.off") + " --interior " + path(dir / "same.off"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("must name different files"));
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --interior " + path(dir / "i.xyz"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("i.xyz: the interior's triangles need .vtk or a mesh format"));
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --guide nan,0");  // nan passed the range
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--guide: expected C1[,C0] with values in [-1, 1]"));
