@@ -1,6 +1,7 @@
 #include "scan_job.h"
 
 #include "acquisition/session_recording.h"
+#include "acquisition/station_calibration.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
 #include "core/version.h"
@@ -27,6 +28,14 @@ SessionRecorder resume_session(CommandContext& context, const ScanJob& job) {
     throw InvalidInput("--rig " + job.rig + ": the session was recorded with the " + m.rig + " rig");
   if (job.object_given && job.object != m.object.name)
     throw InvalidInput("--object " + job.object + ": the session scans '" + m.object.name + "'");
+  // Other devices (a second laser, another camera format) would record steps
+  // the manifest does not describe: laser1 frames in a one-laser session.
+  const nlohmann::json* recorded = m.station.contains("fingerprint") ? &m.station["fingerprint"] : nullptr;
+  const acquisition::StationFingerprint now = acquisition::station_fingerprint(job.station);
+  if (recorded && recorded->value("hash", "") != now.hash)
+    throw InvalidInput(job.folder.string() + ": the session was recorded with other devices than station '" + now.name +
+                       "' (" + recorded->value("devices", nlohmann::json::object()).dump() + " against " +
+                       now.devices.dump() + "); resume it with the station it was scanned with (--station)");
   if (job.parameters_given) context.log->warn("--resume keeps the session's parameters; replay to change them");
   return recorder;
 }

@@ -192,6 +192,12 @@ TEST_F(ScannedSphere, StoppedScanResumesToTheSamePoints) {
   const Outcome refused = scanstation(scan_args(dir / "s"));
   EXPECT_EQ(refused.exit_code, 1);
   EXPECT_THAT(refused.err, testing::HasSubstr("--resume"));
+  // Other devices would record steps the manifest does not describe (the
+  // default station has one laser: laser1 frames in a one-laser session).
+  const Outcome other = scanstation("scan --resume --backend sim -o " + (dir / "s").string());
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_THAT(other.err, testing::HasSubstr("recorded with other devices"));
+  EXPECT_THAT(other.err, testing::HasSubstr("resume it with the station it was scanned with"));
   const Outcome second = scanstation("scan --resume --station " + station_.string() + " -o " + (dir / "s").string());
   ASSERT_EQ(second.exit_code, 0) << second.err;
   EXPECT_THAT(second.out, testing::HasSubstr("scanned " + std::to_string(kSteps)));
