@@ -183,6 +183,13 @@ json process_session(const acquisition::SessionContents& session, const fs::path
 
   json report = options.extra;
   if (const auto warning = acquisition::laser_agreement_warning(result)) report["warnings"].push_back(*warning);
+  // Steps were used and gave nothing: the frames held no stripe the options
+  // keep, or the geometry puts every ray past the working volume (a focal
+  // length of 1e-300 scanned "0 points" with exit 0 and no word).
+  if (result.steps_used > 0 && result.points.cloud.size() == 0)
+    report["warnings"].push_back("no point came from the " + std::to_string(result.steps_used) +
+                                 " steps used: check the stripe options (--row-step, --min-width, --max-width, "
+                                 "--min-contrast) and the calibration (camera, turntable axis, laser planes)");
   json outputs = {{"points", (folder / "points.ply").string()}, {"report", (folder / "report.json").string()}};
   json& boundary_report = report["boundary"];
   if (!boundary.error.empty()) {

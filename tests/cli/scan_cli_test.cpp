@@ -368,6 +368,10 @@ TEST(ScanCli, UnknownObjectsAndMissingSessionsAreRefusedClearly) {
   EXPECT_EQ(huge.exit_code, 1);
   EXPECT_THAT(huge.err, testing::HasSubstr("huge.off: the mesh is inf across"));
   EXPECT_THAT(huge.err, testing::HasSubstr("to be scaled onto it"));
+  // Steps that give no point are said (0 points, exit 0 and no word before).
+  const Outcome empty = scanstation("scan --backend sim --steps 2 --row-step 1000 -o " + (dir / "e").string());
+  EXPECT_EQ(empty.exit_code, 0) << empty.err;
+  EXPECT_THAT(empty.err, testing::HasSubstr("no point came from the 2 steps used"));
   const Outcome none = scanstation("replay " + (dir / "nothing").string());
   EXPECT_EQ(none.exit_code, 1);
   EXPECT_THAT(none.err, testing::HasSubstr("manifest.json: missing"));
