@@ -40,6 +40,17 @@ using nlohmann::json;
 
 constexpr double degree = std::numbers::pi / 180.0;
 
+// A calibration this far off is no calibration: it is refused before the
+// file is written, so a good one in it is not replaced (the same images
+// given as left and right wrote a baseline of 0, exit 0). Real boards fit
+// within a pixel and a tenth of a degree (README: 0.08–0.5 px).
+constexpr double kMostRmsPx = 5.0;
+constexpr double kMostAngleRmsDeg = 5.0;
+
+void refuse_unless(bool fine, const std::string& why) {
+  if (!fine) throw InvalidInput(why + "; the calibration file is not written");
+}
+
 double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::clamp(std::abs(a.normalized().dot(b.normalized())), 0.0, 1.0));
 }
@@ -242,6 +253,9 @@ class CalibrateCommand final : public Command {
     for (const cv::Mat& image : images)
       if (const auto found = acquisition::find_chessboard(image, board_)) corners.push_back(*found);
     const acquisition::CameraIntrinsics intrinsics = acquisition::calibrate_camera(corners, board_, square_, size_, !free_k3_);
+    refuse_unless(intrinsics.rms <= kMostRmsPx, "camera: RMS " + std::to_string(intrinsics.rms) +
+                                                    " px: the corners do not fit one camera (images of another camera "
+                                                    "mixed in, or a wrong --board?)");
     acquisition::CameraPart part;
     part.date = acquisition::calibration_date();
     part.views = corners.size();
@@ -341,6 +355,9 @@ class CalibrateCommand final : public Command {
       }
     const acquisition::TurntableAxis axis =
         acquisition::calibrate_turntable_axis(poses, used_angles, board_, square_, lowest);
+    refuse_unless(axis.angle_rms <= kMostAngleRmsDeg * degree,
+                  "turntable: the board's angles disagree with the angles given by " +
+                      std::to_string(axis.angle_rms / degree) + "° RMS (--angles or --step not the table's?)");
     acquisition::TurntablePart part;
     part.date = acquisition::calibration_date();
     part.axis_camera = axis.direction;
@@ -449,6 +466,13 @@ class CalibrateCommand final : public Command {
     StageTimer timer(context.report, "calibrate");
     const acquisition::StereoCalibration stereo = acquisition::calibrate_stereo(
         left, right, board_, square_, sample_flags_ ? acquisition::StereoModel::opencv_sample : acquisition::StereoModel::standard);
+    refuse_unless(stereo.rms <= kMostRmsPx, "stereo: RMS " + std::to_string(stereo.rms) +
+                                                " px: the pairs do not fit one rig (right images in another order than "
+                                                "the left?)");
+    const double baseline = cv::norm(stereo.translation);
+    refuse_unless(baseline >= 0.01 * square_, "stereo: baseline " + std::to_string(baseline) +
+                                                  ": the left and right images show the board from the same place "
+                                                  "(the same images given twice?)");
     acquisition::StereoPart part;
     part.date = acquisition::calibration_date();
     part.pairs = stereo.used_views.size();

@@ -141,6 +141,23 @@ TEST(CalibrateCli, RealChessboardsCameraFromAListAndStereoFromGlobs) {
   const json calibration = json::parse(slurp(file));
   EXPECT_TRUE(calibration.contains("camera"));  // the stereo part joins the camera part
   EXPECT_EQ(calibration["stereo"]["pairs"], report["result"]["pairs"]["used"]);
+
+  // No calibration, and the good one in the file stays: the same images as
+  // left and right (a baseline of 0 was written with exit 0), and the right
+  // images in another order than the left (RMS 39 px).
+  const std::string before = slurp(file);
+  std::string lefts, rights, reversed;
+  for (const char* k : {"1", "2", "3", "4", "5", "6"}) {
+    lefts += " " + kOpenCvData + "left0" + k + ".jpg";
+    reversed = " " + kOpenCvData + "right0" + k + ".jpg" + reversed;
+  }
+  r = scanstation("calibrate stereo --force --left" + lefts + " --right" + lefts + " -o " + file);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("the same images given twice?); the calibration file is not written"));
+  r = scanstation("calibrate stereo --force --left" + lefts + " --right" + reversed + " -o " + file);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("px: the pairs do not fit one rig"));
+  EXPECT_EQ(slurp(file), before);
 }
 
 }  // namespace
