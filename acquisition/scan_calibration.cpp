@@ -45,11 +45,32 @@ TurntableGeometry calibrated_geometry(const StationCalibration& calibration, con
       laser_dates.push_back(calibration.laser(l)->date);
     }
   }
+  // The cameras' image size against the devices': the fingerprint covers the
+  // station's side only, and an edited camera part stopped the scan after its
+  // first step.
+  const json& device = station.devices.value("camera", json::object());
+  const auto check_size = [&](const PinholeCamera& camera, const char* field) {
+    if (device.contains("width") && device.contains("height") &&
+        (camera.width != device["width"].get<int>() || camera.height != device["height"].get<int>()))
+      throw InvalidInput(file + ": " + field + " is " + std::to_string(camera.width) + "x" +
+                         std::to_string(camera.height) + ", the station's camera delivers " +
+                         device["width"].dump() + "x" + device["height"].dump() + ": recalibrate it");
+  };
+  if (stereo) {
+    check_size(calibration.stereo->left, "stereo.left");
+  } else {
+    check_size(calibration.camera->camera, "camera");
+  }
   const long long at = seconds_since_epoch(now, "the current time");
   double age_days = 0;
   std::string oldest;
   for (const auto& [field, date] : parts) {
     const double age = static_cast<double>(at - seconds_since_epoch(date, file + ": " + field)) / 86400.0;
+    // A day of clock skew between machines is allowed; more is an edited
+    // file or a wrong clock, and the age check would never fire.
+    if (age < -1.0)
+      throw InvalidInput(file + ": " + field + " " + date + " lies " + std::to_string(static_cast<long long>(-age)) +
+                         " days in the future: check this machine's clock, or recalibrate that part");
     if (age >= age_days) {
       age_days = age;
       oldest = field;

@@ -171,6 +171,23 @@ TEST(ScanWithCalibration, CalibratedSphereWithinTheBudgetAndBadCalibrationsRefus
     EXPECT_THAT(r.err, testing::HasSubstr("--calibration-max-age"));
     EXPECT_EQ(accepted.exit_code, 0) << accepted.err;
 
+    // A part dated ahead of this machine's clock, and a camera part edited to
+    // another image size than the station's (its fingerprint intact): the
+    // first was accepted (no age), the second stopped the scan after a step.
+    const long long earlier = static_cast<long long>(timegm(&made)) - 40 * 86400;
+    ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", std::to_string(earlier).c_str(), 1), 0);
+    r = scanstation(stale_scan + " -o " + (dir / "f").string());
+    unsetenv("SOURCE_DATE_EPOCH");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, testing::HasSubstr("days in the future"));
+    json resized = json::parse(slurp(calibration));
+    resized["camera"]["geometry"]["width"] = 1280;
+    write_json(dir / "resized.json", resized);
+    r = short_scan(station, "--calibration " + (dir / "resized.json").string(), dir / "h");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_THAT(r.err, testing::HasSubstr("resized.json: camera is 1280x480, the station's camera delivers 640x480"));
+    EXPECT_FALSE(fs::exists(dir / "h" / "manifest.json"));
+
     // A calibration file that is not there.
     r = scanstation("scan --station " + station.string() + " --calibration nowhere.json -o " + (dir / "e").string());
     EXPECT_EQ(r.exit_code, 1);
