@@ -224,8 +224,12 @@ StationDescription read_station(const std::filesystem::path& file) {
   station.source = file;
   station.name = top.text("name", file.stem().string());
   station.consumer = top.text("consumer", station.consumer);
-  if (const std::string calibration = top.text("calibration", ""); !calibration.empty())
+  if (const toml::node* given = root.get("calibration")) {
+    const std::string calibration = top.text("calibration", "");
+    if (calibration.empty())  // it meant "none", the simulator's truth on a simulated station, without a word
+      top.fail(*given, "calibration: expected a file name (leave the key out for none)");
     station.calibration = file.parent_path() / calibration;  // an absolute path stays as it is
+  }
   const std::string chip = top.text("gpio_chip", "gpiochip0");
   if (const toml::table* t = top.table("camera")) station.camera = read_camera(Section(*t, "camera", file));
   if (const toml::node* lasers = root.get("laser")) {

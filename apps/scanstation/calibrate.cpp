@@ -121,6 +121,9 @@ class CalibrateCommand final : public Command {
     if (sim_ && !(images_.empty() && off_images_.empty() && on_images_.empty() && left_images_.empty() &&
                   right_images_.empty()))
       throw InvalidInput("calibrate: give images or --backend sim, not both");
+    if (sim_ && (!angles_deg_.empty() || step_deg_))  // they were ignored without a word
+      throw InvalidInput("calibrate: --angles and --step give the angles of images; with --backend sim the table turns "
+                         "to --views angles of its own");
     if (sim_ && part == "stereo") {
       stereo_rig_ = sim::station_stereo_rig(description_);  // the rig `scan --rig stereo` scans with
       size_ = {stereo_rig_.left.width, stereo_rig_.left.height};

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -19,10 +20,11 @@ Command::Command(CLI::App& parent, const std::string& name, const std::string& d
 }
 
 CLI::Validator non_negative_integer() {
+  // Read whole as 64 bits: CLI11 clamped 2^64 to 2^64 − 1 without a word.
   return CLI::Validator(
       [](const std::string& value) {
-        return value.find('-') == std::string::npos ? std::string()
-                                                    : "expected a whole number of 0 or more, got " + value;
+        return parse_whole<std::uint64_t>(value) ? std::string()
+                                                 : "expected a whole number from 0 to 2^64 − 1, got " + value;
       },
       "");
 }

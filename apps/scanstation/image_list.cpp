@@ -39,9 +39,14 @@ std::vector<std::filesystem::path> expand_images(const std::vector<std::string>&
     } else if (const std::string ext = lower(argument.extension().string()); ext == ".txt" || ext == ".lst") {
       std::istringstream lines(io::read_file(argument));
       std::string line;
-      while (std::getline(lines, line)) {
+      for (std::size_t number = 1; std::getline(lines, line); ++number) {
         const auto first = line.find_first_not_of(" \t\r");
         if (first == std::string::npos || line[first] == '#') continue;
+        // A binary file given as a list: its bytes are no path (a NUL cut the
+        // message that named them).
+        if (std::any_of(line.begin(), line.end(), [](char c) { return c == '\0' || (c > 0 && c < 0x20 && c != '\t' && c != '\r'); }))
+          throw InvalidInput(argument.string() + ":" + std::to_string(number) +
+                             ": expected one image path per line, found control bytes (is it a list file?)");
         const auto last = line.find_last_not_of(" \t\r");
         const std::filesystem::path image = line.substr(first, last - first + 1);
         images.push_back(image.is_absolute() ? image : argument.parent_path() / image);

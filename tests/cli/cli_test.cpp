@@ -332,7 +332,10 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   EXPECT_FALSE(std::filesystem::exists(dir / "d.xyz"));
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "d.off") + " --continue -5");  // no wrap to 2^64 − 5
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, testing::HasSubstr("--continue: expected a whole number of 0 or more, got -5"));
+  EXPECT_THAT(r.err, testing::HasSubstr("--continue: expected a whole number from 0 to 2^64 − 1, got -5"));
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --continue 18446744073709551616");
+  EXPECT_EQ(r.exit_code, 1);  // 2^64 was clamped to 2^64 − 1 without a word
+  EXPECT_THAT(r.err, testing::HasSubstr("got 18446744073709551616"));
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "g.off") + " --guide off --report " + path(dir / "g.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "g.json"))["result"]["guide_faces"], 0);

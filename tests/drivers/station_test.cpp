@@ -56,6 +56,7 @@ TEST(StationDescription, MistakesNameFileLineAndField) {
   check("[turntable]\ngear_ratio = nan\n", {":2", "turntable.gear_ratio"});
   check("[[laser]]\nsettle_ms = nan\n", {":2", "laser[0].settle_ms"});
   check("[turntable]\nfull_steps_per_rev = 1\nmicrosteps = 1\n", {"1 steps per turn, at least 16"});
+  check("calibration = \"\"\n", {"station.toml:1", "calibration: expected a file name"});
   test::expect_error<InvalidInput>([&] { read_station(folder / "missing.toml"); }, {"does not exist"});
   // A folder was read as an empty file: the default station, under its name.
   test::expect_error<InvalidInput>([&] { read_station(folder.path()); }, {"is a folder, expected a file"});
