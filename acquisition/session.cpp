@@ -417,6 +417,7 @@ SessionRecorder::~SessionRecorder() {
 
 SessionRecorder SessionRecorder::create(const fs::path& folder, const SessionManifest& manifest,
                                         io::Overwrite overwrite) {
+  if (folder.empty()) throw InvalidInput("an output folder name is empty");  // "" / "manifest.json" is the cwd's
   // Before anything is removed: --force with a file in the folder's place
   // failed inside the removal with the filesystem's own text.
   if (std::error_code error; fs::exists(folder, error) && !fs::is_directory(folder, error))

@@ -81,6 +81,7 @@ std::string read_file(const fs::path& path) {
 }
 
 void check_writable(const fs::path& path, Overwrite overwrite) {
+  if (path.empty()) throw InvalidInput("an output file name is empty");
   std::error_code ec;
   if (overwrite == Overwrite::refuse && fs::exists(path, ec))
     throw InvalidInput(path.string() + ": output exists; not replacing it (use --force to replace)");
@@ -97,6 +98,7 @@ void check_output_file(const fs::path& path, Overwrite overwrite) {
 }
 
 void make_folder(const fs::path& folder) {
+  if (folder.empty()) throw InvalidInput("an output folder name is empty");  // it was an OS error, exit 2
   std::error_code ec;
   for (fs::path part = folder; !part.empty(); part = part.parent_path()) {
     if (fs::is_directory(part, ec)) break;

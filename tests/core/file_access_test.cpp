@@ -119,6 +119,8 @@ TEST(OutputFolders, MissingOrFileInTheWayAreNamedBeforeAnyWork) {
                              {"out.ply", "does not exist"});
   expect_error<InvalidInput>([&] { check_output_file(dir / "file.txt" / "out.ply", Overwrite::refuse); },
                              {"file.txt is a file"});
+  expect_error<InvalidInput>([&] { make_folder(""); }, {"an output folder name is empty"});
+  expect_error<InvalidInput>([&] { check_output_file("", Overwrite::replace); }, {"an output file name is empty"});
   make_folder(dir / "a" / "b");
   EXPECT_TRUE(std::filesystem::is_directory(dir / "a" / "b"));
   EXPECT_NO_THROW(make_folder(dir / "a" / "b"));
