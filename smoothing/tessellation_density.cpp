@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -141,6 +142,17 @@ double default_tessellation_tolerance(const BezierSurface& surface) {
 ChosenTessellation choose_tessellation(const BezierSurface& surface, std::optional<int> fixed) {
   const double tolerance = default_tessellation_tolerance(surface);
   if (!fixed) return adaptive_tessellation(surface, tolerance, kAutomaticDensityLimit);
+  // N segments per edge make N² triangles a patch: --density 64 over the
+  // 300k patches of a refined mesh asked for 1.2e9 (hours, tens of GB).
+  const double faces = static_cast<double>(surface.patches.size()) * *fixed * *fixed;
+  if (faces > kMostFixedFaces) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "--density %d over %zu patches would write %.3g triangles, more than %.0e: choose a smaller "
+                  "density, or auto",
+                  *fixed, surface.patches.size(), faces, kMostFixedFaces);
+    throw InvalidInput(text);
+  }
   ChosenTessellation chosen;
   chosen.plan = uniform_plan(surface, *fixed);
   chosen.automatic = false;

@@ -59,9 +59,13 @@ double default_tessellation_tolerance(const BezierSurface& surface);
 /// The largest density the automatic choice gives a patch.
 inline constexpr int kAutomaticDensityLimit = 16;
 
+/// The most triangles a fixed density may ask for (about 10 GB of PLY).
+inline constexpr double kMostFixedFaces = 2e8;
+
 /// `fixed` segments per patch edge everywhere when given (its deviation
 /// reported against the default tolerance), else adaptive_tessellation at
-/// the default tolerance up to kAutomaticDensityLimit.
+/// the default tolerance up to kAutomaticDensityLimit. Throws InvalidInput
+/// when a fixed density would make more than kMostFixedFaces triangles.
 ChosenTessellation choose_tessellation(const BezierSurface& surface, std::optional<int> fixed);
 
 /// For reports: automatic, density (fixed) or largest_density, deviation,

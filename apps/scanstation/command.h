@@ -34,6 +34,9 @@ class Command {
   Command(CLI::App& parent, const std::string& name, const std::string& description);
 
   virtual void run(CommandContext& context) = 0;
+  /// Whether the command makes its output folder (scan, demo, replay): a
+  /// --report inside it may name a folder that does not exist yet.
+  virtual bool makes_output_folder() const { return false; }
 
   CLI::App& cli() { return *cli_; }
   const std::string& report_path() const { return report_path_; }

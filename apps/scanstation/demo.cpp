@@ -34,6 +34,8 @@ class DemoCommand final : public Command {
         ->capture_default_str();
   }
 
+  bool makes_output_folder() const override { return true; }
+
   void run(CommandContext& context) override {
     io::check_writable(job_.folder / "object.ply", context.overwrite);
     job_.station = drivers::StationDescription{};  // the built-in simulated station

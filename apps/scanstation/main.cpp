@@ -62,9 +62,15 @@ int run(int argc, char** argv) {
     Report report(command->cli().get_name());
     ProgressReporter reporter(parse_progress_mode(quiet && progress == "auto" ? "none" : progress));
     const auto overwrite = command->force() ? io::Overwrite::replace : io::Overwrite::refuse;
-    // Not check_output_file: the report may go into the folder a scan, demo
-    // or replay is about to create (--report SESSION/report.json).
-    if (!command->report_path().empty()) io::check_writable(command->report_path(), overwrite);
+    // A report in a missing folder is refused before the work (it failed at
+    // the end, exit 2), unless the command makes its output folder: scan,
+    // demo and replay take --report SESSION/report.json.
+    if (!command->report_path().empty()) {
+      if (command->makes_output_folder())
+        io::check_writable(command->report_path(), overwrite);
+      else
+        io::check_output_file(command->report_path(), overwrite);
+    }
     app::CommandContext context{reporter, report, overwrite, room_logger("scanstation")};
     command->run(context);
     reporter.finish();

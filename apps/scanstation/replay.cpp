@@ -34,6 +34,8 @@ class ReplayCommand final : public Command {
     stereo_.add_to(*cli_);
   }
 
+  bool makes_output_folder() const override { return true; }
+
   void run(CommandContext& context) override {
     const std::filesystem::path out = folder_.empty() ? session_ / "replay" : folder_;
     for (const char* name : {"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png", "report.json"})

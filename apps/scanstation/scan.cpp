@@ -55,6 +55,8 @@ class ScanCommand final : public Command {
                  "results; --resume continues.");
   }
 
+  bool makes_output_folder() const override { return true; }
+
   void run(CommandContext& context) override {
     // A resumed scan continues with the session's own rig.
     job_.rig_given = cli_->count("--rig") > 0;

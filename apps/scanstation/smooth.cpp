@@ -47,7 +47,7 @@ class SmoothCommand final : public Command {
     cli_->add_option("--neighbours", neighbours_,
                      "--normals fitted: how many nearest vertices each plane is fitted to (all of them when there are "
                      "fewer)")
-        ->check(CLI::Range(3, 1000000))
+        ->check(CLI::Range(3, 256))  // a plane through a thousand times more points is no local plane, and slow
         ->capture_default_str();
     cli_->add_option("--ratio", ratio_,
                      "three-split Step 5: one (e0 = e1 = 1, as the thesis) or least-squares (the free ratio e1/e0 "

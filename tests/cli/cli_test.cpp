@@ -129,6 +129,12 @@ TEST(Cli, OutputInAMissingFolderIsRefusedBeforeTheWork) {
                   path(dir / "no-such-folder/m.ply"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("no-such-folder does not exist"));
+  // A report in a missing folder failed after the work (exit 2); a command
+  // that makes no folder refuses it first.
+  r = scanstation("info " + path(test::cgal_data("meshes/tetrahedron.off")) + " --report " +
+                  path(dir / "no-such-folder/r.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("no-such-folder does not exist"));
   // A report may go into the folder the command creates.
   r = scanstation("scan --backend sim --steps 2 -o " + path(dir / "session") + " --report " +
                   path(dir / "session/scan.json"));
@@ -614,6 +620,14 @@ TEST(Cli, SmoothSaysWhereTheSurfaceBulges) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, testing::ContainsRegex("the surface strays up to [0-9.]+ \\([0-9]+% of the mesh's size\\)"));
   EXPECT_THAT(r.err, testing::HasSubstr("--max-move 1 bounds"));
+  // A fixed density that would write billions of triangles is refused (a
+  // refined elephant at 64 ran for hours).
+  r = scanstation("smooth " + tetrahedron + " -o " + path(dir / "d.ply") + " --density 64");
+  ASSERT_EQ(r.exit_code, 0) << r.err;  // 24 patches: 98k triangles
+  r = scanstation("smooth " + path(test::cgal_data("meshes/refined_elephant.off")) + " -o " + path(dir / "d.ply") +
+                  " --force --density 64");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--density 64 over 533568 patches would write 2.19e+09 triangles"));
   const auto oscillation = nlohmann::json::parse(slurp(dir / "t.json"))["result"]["oscillation"];
   EXPECT_GT(oscillation["max_distance"].get<double>(), 1.0);  // the unit corner's surface reaches past y = 4
   r = scanstation("smooth " + tetrahedron + " -o " + path(dir / "b.ply") + " --max-move 1");
