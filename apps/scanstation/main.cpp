@@ -3,6 +3,7 @@
 // Exit codes: 0 success, 1 bad input or usage, 2 runtime failure.
 #include "command.h"
 #include "core/errors.h"
+#include "core/io/file_access.h"
 #include "core/log.h"
 #include "core/process_memory.h"
 #include "core/version.h"
@@ -53,6 +54,7 @@ int run(int argc, char** argv) {
     return code == 0 ? 0 : 1;
   }
 
+  io::remove_partial_outputs_on_signals();
   set_log_level(quiet ? spdlog::level::err
                       : verbose >= 2 ? spdlog::level::debug
                       : verbose == 1 ? spdlog::level::info

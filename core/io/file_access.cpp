@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <csignal>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
@@ -111,6 +112,42 @@ void make_folder(const fs::path& folder) {
 }
 
 namespace {
+// The temporary files being written, for remove_partial_outputs: fixed
+// slots of plain bytes, so that a signal handler may read them (it may not
+// lock or allocate). A slot is filled before its file exists and emptied
+// after the file is renamed or removed.
+constexpr int kTemporarySlots = 16;
+constexpr std::size_t kTemporaryPath = 4096;
+char g_temporaries[kTemporarySlots][kTemporaryPath];
+std::atomic<bool> g_temporary_used[kTemporarySlots];
+
+int hold_temporary(const fs::path& temp) {
+  const std::string& name = temp.native();
+  if (name.size() >= kTemporaryPath) return -1;
+  for (int slot = 0; slot < kTemporarySlots; ++slot) {
+    bool expected = false;
+    if (!g_temporary_used[slot].load() && g_temporary_used[slot].compare_exchange_strong(expected, true)) {
+      g_temporaries[slot][0] = '\0';
+      std::atomic_signal_fence(std::memory_order_seq_cst);
+      std::memcpy(g_temporaries[slot], name.c_str(), name.size() + 1);
+      return slot;
+    }
+  }
+  return -1;  // more at once than slots: that one is not removed on a signal
+}
+
+void release_temporary(int slot) {
+  if (slot < 0) return;
+  g_temporaries[slot][0] = '\0';
+  g_temporary_used[slot].store(false);
+}
+
+extern "C" void remove_partial_outputs_and_die(int signal_number) {
+  remove_partial_outputs();
+  ::signal(signal_number, SIG_DFL);
+  ::raise(signal_number);
+}
+
 // Creates a fresh temporary file beside `path`; the mode 0666 is reduced by
 // the umask as for any new file.
 int create_temporary(const fs::path& path, fs::path& temp) {
@@ -138,6 +175,11 @@ void write_file_atomically_streamed(const fs::path& path, const std::function<vo
   check_writable(path, overwrite);
   fs::path temp;
   int fd = create_temporary(path, temp);
+  const int slot = hold_temporary(temp);
+  struct Release {
+    int slot;
+    ~Release() { release_temporary(slot); }
+  } release{slot};
   try {
     produce([fd, &temp](std::string_view piece) { write_all(fd, piece, temp); });
     if (::fsync(fd) != 0) throw IoError(os_error("cannot flush", temp, errno));
@@ -149,6 +191,23 @@ void write_file_atomically_streamed(const fs::path& path, const std::function<vo
     if (fd >= 0) ::close(fd);
     ::unlink(temp.c_str());
     throw;
+  }
+}
+
+void remove_partial_outputs() noexcept {
+  for (int slot = 0; slot < kTemporarySlots; ++slot)
+    if (g_temporary_used[slot].load() && g_temporaries[slot][0] != '\0') ::unlink(g_temporaries[slot]);
+}
+
+void remove_partial_outputs_on_signals() {
+  struct sigaction action{};
+  action.sa_handler = remove_partial_outputs_and_die;
+  sigemptyset(&action.sa_mask);
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction previous{};
+    sigaction(signal_number, nullptr, &previous);
+    if (previous.sa_handler == SIG_IGN) continue;  // ignored on purpose (nohup, a background job): stays so
+    sigaction(signal_number, &action, nullptr);
   }
 }
 

@@ -42,4 +42,14 @@ void check_output_file(const std::filesystem::path& path, Overwrite overwrite);
 /// folder on the way, is a file; IoError when the system refuses.
 void make_folder(const std::filesystem::path& folder);
 
+/// Removes the temporary files of the writes in progress (their outputs stay
+/// as they were). Async-signal-safe.
+void remove_partial_outputs() noexcept;
+
+/// SIGINT, SIGTERM and SIGHUP remove the partial outputs, then end the
+/// process as the signal would (a Ctrl-C during a 19 GB tessellation left its
+/// temporary file). Signals ignored already stay ignored. A safe-state guard
+/// (drivers/safe_state.h) takes the signals over while it exists.
+void remove_partial_outputs_on_signals();
+
 }  // namespace scanstation::io

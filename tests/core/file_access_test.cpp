@@ -5,8 +5,11 @@
 #include "test_support.h"
 
 #include <atomic>
+#include <csignal>
 #include <fstream>
+#include <sys/wait.h>
 #include <thread>
+#include <unistd.h>
 
 namespace scanstation::io {
 namespace {
@@ -85,6 +88,30 @@ TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
   expect_error<InvalidInput>([&] { read_file("/dev/zero"); }, {"/dev/zero", "is a device"});
   // A folder without an extension is named as a folder, not as an unknown format.
   expect_error<InvalidInput>([&] { resolve_format(dir.path(), std::nullopt); }, {"is a folder, expected a file"});
+}
+
+// A signal during a write ends the process as the signal would and leaves no
+// temporary file (a Ctrl-C during a 19 GB tessellation left it).
+TEST(WriteFile, ASignalMidWriteLeavesNoTemporaryFile) {
+  ScratchFolder dir;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    remove_partial_outputs_on_signals();
+    write_file_atomically_streamed(dir / "out.ply", [](const ByteSink& sink) {
+      sink(std::string(1 << 20, 'x'));
+      raise(SIGTERM);  // as if the user ended it here
+      sink("never");
+    }, Overwrite::refuse);
+    _exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    ADD_FAILURE() << "left behind: " << entry.path();
 }
 
 // JSON documents: what is wrong, where, in words of the file (nlohmann's
