@@ -10,10 +10,36 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <set>
 
 namespace {
 
 using namespace scanstation;
+
+// --report naming a file the command reads or writes replaced that file with
+// JSON (`info cube.off --report cube.off --force` replaced the input); inside
+// the folder a scan, demo or replay makes, the flow's own files are taken.
+void refuse_report_over_a_file_of_the_command(app::Command& command) {
+  const std::filesystem::path report = std::filesystem::path(command.report_path()).lexically_normal();
+  for (const CLI::Option* option : command.cli().get_options()) {
+    if (option->get_name() == "--report") continue;
+    for (const std::string& value : option->results()) {
+      const std::filesystem::path named = std::filesystem::path(value).lexically_normal();
+      const bool flow_file = command.makes_output_folder() && report.parent_path() == named &&
+                             std::set<std::string>{"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png",
+                                                   "report.json", "manifest.json", "journal.jsonl", "object.ply"}
+                                 .count(report.filename().string()) > 0;
+      if (named == report || flow_file)
+        throw InvalidInput("--report " + command.report_path() + ": " +
+                           (flow_file ? "a file of the session folder " + value
+                                      : "also given as " + (option->get_name().starts_with("-")
+                                                                ? option->get_name()
+                                                                : "the " + option->get_name() + " argument")) +
+                           "; name another file for the report");
+    }
+  }
+}
 
 int run(int argc, char** argv) {
   CLI::App cli{"scanstation: turntable laser and stereo scanning, closed object boundaries from scattered points",
@@ -68,6 +94,7 @@ int run(int argc, char** argv) {
     // the end, exit 2), unless the command makes its output folder: scan,
     // demo and replay take --report SESSION/report.json.
     if (!command->report_path().empty()) {
+      refuse_report_over_a_file_of_the_command(*command);
       if (command->makes_output_folder())
         io::check_writable(command->report_path(), overwrite);
       else

@@ -135,6 +135,21 @@ TEST(Cli, OutputInAMissingFolderIsRefusedBeforeTheWork) {
                   path(dir / "no-such-folder/r.json"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("no-such-folder does not exist"));
+  // A report over a file the command reads or writes replaced it with JSON:
+  // the input mesh, the output, a file of the session folder.
+  {
+    std::ofstream(dir / "cube.off") << slurp(test::cgal_data("meshes/cube.off"));
+  }
+  r = scanstation("info " + path(dir / "cube.off") + " --force --report " + path(dir / "cube.off"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("cube.off: also given as the file argument"));
+  EXPECT_EQ(slurp(dir / "cube.off"), slurp(test::cgal_data("meshes/cube.off")));
+  r = scanstation("convert " + path(dir / "cube.off") + " " + path(dir / "c.ply") + " --report " + path(dir / "c.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("also given as the"));
+  r = scanstation("scan --backend sim --steps 2 -o " + path(dir / "flow") + " --report " + path(dir / "flow/points.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("a file of the session folder"));
   // A report may go into the folder the command creates.
   r = scanstation("scan --backend sim --steps 2 -o " + path(dir / "session") + " --report " +
                   path(dir / "session/scan.json"));
