@@ -10,6 +10,7 @@
 #include "sim/scan_objects.h"
 
 #include <cstdio>
+#include <filesystem>
 
 namespace scanstation::app {
 
@@ -45,7 +46,8 @@ class DemoCommand final : public Command {
     // (a mesh file is its own truth).
     if (object.mesh_file.empty())
       io::write_mesh(job_.folder / "object.ply", object.on_platter, {std::nullopt, std::nullopt, io::Overwrite::replace});
-    std::printf("the demo's session and results are in %s/ (look at preview.png)\n", job_.folder.c_str());
+    std::printf("the demo's session and results are in %s/%s\n", job_.folder.c_str(),
+                std::filesystem::exists(job_.folder / "preview.png") ? " (look at preview.png)" : "");
   }
 
  private:

@@ -4,6 +4,7 @@
 #include "command.h"
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "core/mesh_measures.h"
 #include "smoothing/curve_output.h"
 #include "smoothing/g1_curve.h"
 #include "smoothing/patches_json.h"
@@ -141,6 +142,12 @@ class SmoothCommand final : public Command {
   }
 
   void smooth_surface(CommandContext& context, const TriangleMesh& mesh) {
+    // Faces wound inward give an inside-out surface (normals into the solid),
+    // which came out without a word.
+    if (const double volume = enclosed_volume(mesh.vertices.positions, mesh.faces); volume < 0)
+      context.log->warn("{}: its faces are wound inward (enclosed volume {:.6g}): the smooth surface is inside out as "
+                        "well; reverse the faces' order to turn it",
+                        input_.string(), volume);
     const SurfaceSmoothingOptions options = smoothing_options(mesh);
     SurfaceSmoothing smoothed;
     try {

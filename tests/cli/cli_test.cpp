@@ -651,6 +651,15 @@ TEST(Cli, SmoothSaysWhereTheSurfaceBulges) {
   r = scanstation("smooth " + path(test::cgal_data("meshes/eight.off")) + " -o " + path(dir / "e.ply"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, testing::Not(testing::HasSubstr("strays")));
+  EXPECT_THAT(r.err, testing::Not(testing::HasSubstr("wound inward")));
+  // Faces wound inward: the surface comes out inside out, which is said.
+  {
+    std::ofstream(dir / "inward.off") << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                      << "3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n";
+  }
+  r = scanstation("smooth " + path(dir / "inward.off") + " -o " + path(dir / "i.ply") + " --max-move 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, testing::HasSubstr("inward.off: its faces are wound inward (enclosed volume -0.166667)"));
 }
 
 TEST(Cli, StereoOnTheMiddleburyPairWithGroundTruth) {
