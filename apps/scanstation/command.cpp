@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +19,12 @@ Command::Command(CLI::App& parent, const std::string& name, const std::string& d
     : cli_(parent.add_subcommand(name, description)) {
   cli_->add_option("--report", report_path_, "Write machine-readable results and timings as JSON to this file");
   cli_->add_flag("--force", force_, "Replace output files that already exist");
+}
+
+bool has_extension(const std::filesystem::path& path, std::string_view extension) {
+  const std::string ending = path.extension().string();
+  return std::equal(ending.begin(), ending.end(), extension.begin(), extension.end(),
+                    [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
 }
 
 CLI::Validator non_negative_integer() {

@@ -14,6 +14,7 @@
 #include <optional>
 #include <spdlog/logger.h>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace scanstation::app {
@@ -60,6 +61,10 @@ std::optional<T> parse_whole(const std::string& text) {
   if (error != std::errc() || stop != end) return std::nullopt;
   return value;
 }
+
+/// Whether `path` ends in `extension` (".json"), in any letter case: .PLY
+/// and .Off were taken while .JSON and .SVG were refused.
+bool has_extension(const std::filesystem::path& path, std::string_view extension);
 
 /// For options read into unsigned integers: refuses a minus sign, which
 /// CLI11 would wrap around (--seed -3 became 2^64 − 3).

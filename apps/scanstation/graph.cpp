@@ -112,7 +112,7 @@ class GraphCommand final : public Command {
     const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
     context.progress.finish();
     StageTimer timer(context.report, "graph");
-    const bool json = output_.extension() == ".json";
+    const bool json = has_extension(output_, ".json");
     if (cloud.dimension == 2) {
       const Eigen::MatrixX2d V = cloud.positions.leftCols(2);
       const Eigen::MatrixX2i E = type_ ? named_graph(*type_, V, param_)

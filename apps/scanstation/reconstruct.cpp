@@ -172,7 +172,7 @@ class ReconstructCommand final : public Command {
         (svg_ && interior_ && same(*svg_, *interior_)))
       throw InvalidInput("-o, --svg and --interior must name different files");
     // A point format would keep the interior's points and drop its triangles.
-    if (interior_ && interior_->extension() != ".vtk" && !io::stores_faces(io::resolve_format(*interior_, std::nullopt)))
+    if (interior_ && !has_extension(*interior_, ".vtk") && !io::stores_faces(io::resolve_format(*interior_, std::nullopt)))
       throw InvalidInput("--interior " + interior_->string() + ": the interior's triangles need .vtk or a mesh format "
                          "(ply, off, obj, stl)");
     options_.constriction.until_indicator = until_;
@@ -231,7 +231,7 @@ class ReconstructCommand final : public Command {
         if (r.interior.rows() == 0)
           throw InvalidInput("--interior: augmentation, flips or unfolding changed the boundary away from the Delaunay cells, "
                              "so no interior triangulation is available (use --augment off --flips off --unfold off)");
-        if (interior_->extension() != ".vtk")
+        if (!has_extension(*interior_, ".vtk"))
           throw InvalidInput("--interior " + interior_->string() + ": 3D interiors are tetrahedra, written as .vtk");
         io::write_file_atomically(*interior_, io::write_vtk_cells(r.mesh.vertices.positions, r.interior),
                                   context.overwrite);

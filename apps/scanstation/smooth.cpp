@@ -122,8 +122,8 @@ class SmoothCommand final : public Command {
     }
     curve_timer.stop();
     StageTimer write_timer(context.report, "write");
-    const bool json_output = output_.extension() == ".json";
-    if (!json_output && output_.extension() != ".svg")
+    const bool json_output = has_extension(output_, ".json");
+    if (!json_output && !has_extension(output_, ".svg"))
       throw InvalidInput("-o " + output_.string() + ": a curve is written as .svg (picture) or .json (control points)");
     io::write_file_atomically(output_, json_output ? g1_curve_json(curve).dump(1) : g1_curve_svg(polygon, curve),
                               context.overwrite);

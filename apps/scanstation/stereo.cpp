@@ -117,6 +117,11 @@ class StereoCommand final : public Command {
         {"none", acquisition::DisparityPostFilter::none}};
     if (backend_) {
       if (!left_.empty() || !right_.empty()) throw InvalidInput("stereo --backend sim captures its own images: drop LEFT RIGHT");
+      // Options of a pair on disk: the capture took them without a word.
+      for (const char* pair_only : {"--truth", "--plain", "--encoding", "--disparities", "--min-disparity"})
+        if (cli_->count(pair_only))
+          throw InvalidInput(std::string("stereo --backend sim: ") + pair_only +
+                             " is for a pair of images on disk (the capture fits its disparity range to the platter)");
       // Filled gaps would be invented geometry: only matched pixels, unless asked.
       options_.post_filter = cli_->count("--post") ? post.at(post_) : acquisition::DisparityPostFilter::none;
       if (!cli_->count("--median")) options_.median_size = 0;
@@ -230,6 +235,10 @@ class StereoCommand final : public Command {
     result["coverage"] = covered;
     std::printf("%d views of the %s (projector %s): %lld points fused, %.1f%% of its surface covered\n", views_,
                 object_.c_str(), projector_ ? "on" : "off", static_cast<long long>(fused.cloud.size()), 100 * covered);
+    if (fused.cloud.size() == 0)
+      context.log->warn("no point was fused: at {}x{} the views match too little (try a larger --width/--height, "
+                        "more --views or fewer --min-views)",
+                        width_, height_);
     std::printf("wrote %s\n", output_.c_str());
   }
 

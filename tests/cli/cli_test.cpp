@@ -416,6 +416,10 @@ TEST(Cli, GraphsIn2DAnd3D) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--param: expected b in [-1, 1]"));
   EXPECT_THAT(r.err, testing::HasSubstr("got 1.5"));
+  // Extensions in upper case: .PLY was taken, .JSON refused.
+  r = scanstation("graph " + square + " -o " + path(dir / "G.JSON") + " --type emst");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NO_THROW((void)nlohmann::json::parse(slurp(dir / "G.JSON")));
   r = scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --type alpha --param nan");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--param: expected a number"));

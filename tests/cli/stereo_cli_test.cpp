@@ -38,6 +38,15 @@ TEST(StereoCli, SimulatedCaptureWritesAFusedCloudAndItsReport) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--backend sim"));
   EXPECT_EQ(scanstation("stereo --backend sim --object teapot -o " + path(dir / "x.ply")).exit_code, 1);
+  // Options of a pair on disk were taken by the capture without a word.
+  r = scanstation("stereo --backend sim --object sphere" + small + " --disparities 32 -o " + path(dir / "d.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--disparities is for a pair of images on disk"));
+  // Nothing fused is said (an empty cloud came with exit 0 and no word).
+  r = scanstation("stereo --backend sim --object sphere --width 64 --height 48 --views 2 -o " + path(dir / "e.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr(": 0 points fused"));
+  EXPECT_THAT(r.err, testing::HasSubstr("no point was fused: at 64x48"));
 }
 
 }  // namespace
