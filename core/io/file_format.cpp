@@ -22,8 +22,9 @@ constexpr std::array<std::pair<const char*, FileFormat>, 10> kExtensions{{
     {".stl", FileFormat::stl},
     {".svg", FileFormat::svg},
 }};
-constexpr std::array<std::pair<const char*, FileFormat>, 6> kNames{{
+constexpr std::array<std::pair<const char*, FileFormat>, 7> kNames{{
     {"xyz", FileFormat::xyz},
+    {"xy", FileFormat::xyz},  // the name of the 2D files' extension: points as text either way
     {"ply", FileFormat::ply},
     {"off", FileFormat::off},
     {"obj", FileFormat::obj},
@@ -55,7 +56,7 @@ FileFormat resolve_format(const std::filesystem::path& path, const std::optional
     const std::string name = lower(*override_name);
     for (const auto& [n, f] : kNames)
       if (name == n) return f;
-    throw InvalidInput("unknown format '" + *override_name + "': expected one of xyz, ply, off, obj, stl, svg");
+    throw InvalidInput("unknown format '" + *override_name + "': expected one of xyz (or xy), ply, off, obj, stl, svg");
   }
   if (const auto format = format_from_extension(path)) return *format;
   std::error_code error;

@@ -88,6 +88,9 @@ TEST(ReadFile, MissingFileAndFolderAreClearErrors) {
   expect_error<InvalidInput>([&] { read_file("/dev/zero"); }, {"/dev/zero", "is a device"});
   // A folder without an extension is named as a folder, not as an unknown format.
   expect_error<InvalidInput>([&] { resolve_format(dir.path(), std::nullopt); }, {"is a folder, expected a file"});
+  // --format xy names the 2D files' own extension (it was refused while .xy was read).
+  EXPECT_EQ(resolve_format("p.txt", std::string("xy")), FileFormat::xyz);
+  EXPECT_EQ(format_name(FileFormat::xyz), "xyz");
 }
 
 // A signal during a write ends the process as the signal would and leaves no
