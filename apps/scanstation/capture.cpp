@@ -21,7 +21,8 @@ class CaptureCommand final : public Command {
     options_.add_to(*cli_);
     cli_->add_option("-n,--count", count_, "Number of frames")->check(CLI::Range(1, 100000));
     cli_->add_option("-o,--output", folder_, "Folder for frame_0000.png, ...")->required();
-    cli_->add_option("--laser", laser_, "Switch this laser on and keep only frames exposed after it settled");
+    cli_->add_option("--laser", laser_, "Switch this laser on and keep only frames exposed after it settled")
+        ->check(integer_in(0, 63));
   }
 
   void run(CommandContext& context) override {

@@ -56,6 +56,17 @@ CLI::Validator finite_range(double low, double high) {
       fmt::format("in [{} - {}]", low, high));
 }
 
+CLI::Validator integer_in(long long low, long long high, bool odd) {
+  return CLI::Validator(
+      [low, high, odd](const std::string& value) {
+        const std::optional<long long> x = parse_whole<long long>(value);
+        if (!x || *x < low || *x > high || (odd && *x % 2 == 0))
+          return fmt::format("expected {}whole number in [{}, {}], got '{}'", odd ? "an odd " : "a ", low, high, value);
+        return std::string();
+      },
+      fmt::format("in [{} - {}]", low, high));
+}
+
 void add_density_option(CLI::App& app, std::optional<int>& density) {
   app.add_option_function<std::string>(
          "--density",

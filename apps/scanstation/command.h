@@ -70,6 +70,11 @@ bool has_extension(const std::filesystem::path& path, std::string_view extension
 /// CLI11 would wrap around (--seed -3 became 2^64 − 3).
 CLI::Validator non_negative_integer();
 
+/// For integer options: written as a whole number in [low, high] (odd when
+/// asked). CLI11 alone read "" as 0 and "0x10" as 16, and an even --block
+/// was refused later without naming the option.
+CLI::Validator integer_in(long long low, long long high, bool odd = false);
+
 /// For floating-point options: a finite number in [low, high]. CLI::Range
 /// alone lets "nan" through (every comparison with it is false).
 CLI::Validator finite_range(double low, double high);

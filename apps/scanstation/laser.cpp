@@ -21,7 +21,9 @@ class LaserCommand final : public Command {
   explicit LaserCommand(CLI::App& parent)
       : Command(parent, "laser", "Switch laser N on or off (on holds until --hold passes or Ctrl-C)") {
     options_.add_to(*cli_);
-    cli_->add_option("index", index_, "Laser number (0 = first [[laser]] of the station)")->required();
+    cli_->add_option("index", index_, "Laser number (0 = first [[laser]] of the station)")
+        ->required()
+        ->check(integer_in(0, 63));
     cli_->add_option("state", state_, "on or off")->required()->check(CLI::IsMember({"on", "off"}));
     cli_->add_option("--hold", hold_, "Seconds to keep the laser on (0: until interrupted)")
         ->check(finite_range(0.0, 1e7));

@@ -84,7 +84,7 @@ class StereoCommand final : public Command {
     cli_->add_option("--disparities", options_.num_disparities, "Disparity range, a multiple of 16 (with --min-disparity at most 2048)")
         ->check(CLI::Range(16, 2048))
         ->capture_default_str();
-    cli_->add_option("--block", options_.block_size, "SGBM block size (odd)")->check(CLI::Range(1, 255))->capture_default_str();
+    cli_->add_option("--block", options_.block_size, "SGBM block size (odd)")->check(integer_in(1, 255, true))->capture_default_str();
     cli_->add_option("--p1", options_.p1, "SGBM penalty P1 (0 = 8·channels·block²)")
         ->check(CLI::Range(0, 1 << 24))
         ->capture_default_str();

@@ -88,6 +88,10 @@ TEST(DevicesCli, TurntableAndLaserOnTheSimulatedStation) {
   r = scanstation("laser 2 off --station " + kStations + "sim.toml");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("the station has 2 laser(s)"));
+  // An empty number was laser 0.
+  r = scanstation("laser \"\" off --station " + kStations + "sim.toml");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("index: expected a whole number in [0, 63], got ''"));
 }
 
 TEST(DevicesCli, BadStationFileNamesLineAndField) {

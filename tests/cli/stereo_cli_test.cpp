@@ -38,6 +38,10 @@ TEST(StereoCli, SimulatedCaptureWritesAFusedCloudAndItsReport) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--backend sim"));
   EXPECT_EQ(scanstation("stereo --backend sim --object teapot -o " + path(dir / "x.ply")).exit_code, 1);
+  // An even block was refused by the matcher without naming the option.
+  r = scanstation("stereo l.png r.png -o " + path(dir / "x.png") + " --block 4");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--block: expected an odd whole number in [1, 255], got '4'"));
   // Options of a pair on disk were taken by the capture without a word.
   r = scanstation("stereo --backend sim --object sphere" + small + " --disparities 32 -o " + path(dir / "d.ply"));
   EXPECT_EQ(r.exit_code, 1);
