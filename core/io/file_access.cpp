@@ -127,9 +127,13 @@ int hold_temporary(const fs::path& temp) {
   for (int slot = 0; slot < kTemporarySlots; ++slot) {
     bool expected = false;
     if (!g_temporary_used[slot].load() && g_temporary_used[slot].compare_exchange_strong(expected, true)) {
+      // The first byte last: a signal between the two sees an empty slot,
+      // never a path half copied over an older one.
       g_temporaries[slot][0] = '\0';
       std::atomic_signal_fence(std::memory_order_seq_cst);
-      std::memcpy(g_temporaries[slot], name.c_str(), name.size() + 1);
+      std::memcpy(g_temporaries[slot] + 1, name.c_str() + 1, name.size());
+      std::atomic_signal_fence(std::memory_order_seq_cst);
+      g_temporaries[slot][0] = name[0];
       return slot;
     }
   }
