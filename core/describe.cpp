@@ -3,6 +3,7 @@
 #include "core/bounding_box.h"
 #include "core/mesh_measures.h"
 #include "core/mesh_topology.h"
+#include "core/predicates.h"
 #include "core/self_intersections.h"
 #include "core/unique_points.h"
 
@@ -62,6 +63,16 @@ nlohmann::json describe(const TriangleMesh& mesh) {
     j["topology"]["simple"] = pairs ? nlohmann::json(*pairs == 0) : nlohmann::json(nullptr);
   }
   j["area"] = surface_area(P, mesh.faces);
+  // Faces of three distinct vertices on one line: no topology count sees
+  // them (degenerate_faces repeats an index), and a smooth surface or a
+  // flintstone tree meets them as folds.
+  std::size_t flat = 0;
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a != b && b != c && a != c && collinear(P.row(a).transpose(), P.row(b).transpose(), P.row(c).transpose()))
+      ++flat;
+  }
+  j["zero_area_faces"] = flat;
   // Only a closed, consistently oriented surface encloses a volume; its sign
   // says whether the faces point out.
   if (t.closed && t.oriented) j["volume"] = enclosed_volume(P, mesh.faces);

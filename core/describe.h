@@ -13,7 +13,8 @@ namespace scanstation {
 ///  {"min", "max", "diagonal"}, "duplicate_points"} and, when there are
 /// faces, "topology": {closed, manifold, oriented, genus, components, ...,
 /// and for an oriented manifold "simple" / "self_intersecting_pairs"}
-/// plus "area" and, for a closed oriented mesh, "volume".
+/// plus "area", "zero_area_faces" (three distinct vertices on one line,
+/// exactly) and, for a closed oriented mesh, "volume".
 nlohmann::json describe(const TriangleMesh& mesh);
 
 /// {"vertices", "perimeter", "area", "orientation": "counter-clockwise" |

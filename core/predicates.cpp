@@ -29,6 +29,10 @@ int side_of_oriented_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return static_cast<int>(CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
 }
 
+bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return CGAL::collinear(cgal(a), cgal(b), cgal(c));
+}
+
 bool all_coplanar(const Eigen::MatrixX3d& V) {
   const auto p = [&](Eigen::Index i) { return cgal(Eigen::Vector3d(V.row(i).transpose())); };
   Eigen::Index b = 1;

@@ -30,6 +30,10 @@ int side_of_oriented_circle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, 
 int side_of_oriented_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                             const Eigen::Vector3d& d, const Eigen::Vector3d& e);
 
+/// Whether a, b, c lie on one line (two or three of them equal included),
+/// decided exactly.
+bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 /// Whether every row of V lies in one plane (fewer than four points, or all
 /// on one line, included), decided exactly.
 bool all_coplanar(const Eigen::MatrixX3d& V);

@@ -59,7 +59,17 @@ TEST(Cli, ConvertAndInfoOnRealCgalData) {
   EXPECT_EQ(report["summary"]["topology"]["closed"], true);
   EXPECT_EQ(report["summary"]["topology"]["genus"], 3);  // the elephant has three handles
   EXPECT_GT(report["summary"]["volume"].get<double>(), 0.0);
+  EXPECT_EQ(report["summary"]["zero_area_faces"], 0);
   EXPECT_TRUE(report["seconds"].contains("read") && report["seconds"].contains("total"));
+  // A face of three distinct vertices on one line was counted nowhere
+  // (degenerate_faces counts repeated indices).
+  {
+    std::ofstream(dir / "flat.off") << "OFF\n5 5 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.5 0 0\n"
+                                    << "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 4 1\n";
+  }
+  r = scanstation("info " + path(dir / "flat.off") + " --report " + path(dir / "flat.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "flat.json"))["summary"]["zero_area_faces"], 1);
 
   r = scanstation("convert " + path(test::cgal_data("points_3/kitten.xyz")) + " " + path(dir / "k.ply") + " --ascii");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -3,6 +3,8 @@
 #include <CGAL/Exact_rational.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace scanstation {
 namespace {
 
@@ -79,6 +81,9 @@ TEST(Predicates, AllCoplanarIsExactWithDuplicatesAndCollinearStarts) {
   EXPECT_TRUE(all_coplanar(T));
   EXPECT_TRUE(all_coplanar(T.topRows(3)));
   EXPECT_TRUE(all_coplanar(Eigen::MatrixX3d::Ones(4, 3)));  // one point four times
+  EXPECT_TRUE(collinear({0, 0, 0}, {0.5, 0.25, 0.125}, {2, 1, 0.5}));
+  EXPECT_FALSE(collinear({0, 0, 0}, {0.5, 0.25, std::nextafter(0.125, 1.0)}, {2, 1, 0.5}));  // one ulp off
+  EXPECT_TRUE(collinear({1, 2, 3}, {1, 2, 3}, {5, 5, 5}));  // two equal points
 }
 
 }  // namespace
