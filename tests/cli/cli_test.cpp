@@ -383,23 +383,24 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
     std::ofstream(dir / "far.txt") << "0 1 2\n0 1 9999999\n";
     std::ofstream(dir / "twice.txt") << "# faces\n0 1 2\n\n2 0 1\n";
   }
-  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "far.txt"));
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, testing::ContainsRegex("far.txt:2: expected vertex index 3 of 3 in \\[0, [0-9]+\\], found 9999999"));
-  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --keep " + path(dir / "twice.txt"));
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, testing::HasSubstr("twice.txt:4: the same indices as line 2"));
+  // Each refused with exit 1 and the reason.
+  const auto refused = [&](const std::string& options, const auto& reason) {
+    const Outcome o = scanstation("reconstruct " + cow + " " + options);
+    EXPECT_EQ(o.exit_code, 1) << options;
+    EXPECT_THAT(o.err, reason) << options;
+  };
+  refused("-o " + path(dir / "e.off") + " --keep " + path(dir / "far.txt"),
+          testing::ContainsRegex("far.txt:2: expected vertex index 3 of 3 in \\[0, [0-9]+\\], found 9999999"));
+  refused("-o " + path(dir / "e.off") + " --keep " + path(dir / "twice.txt"),
+          testing::HasSubstr("twice.txt:4: the same indices as line 2"));
   // Two outputs in one file kept only the later; a point format kept the
   // interior's points and dropped its triangles.
-  r = scanstation("reconstruct " + cow + " -o " + path(dir / "same.off") + " --interior " + path(dir / "same.off"));
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, testing::HasSubstr("must name different files"));
-  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --interior " + path(dir / "i.xyz"));
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, testing::HasSubstr("i.xyz: the interior's triangles need .vtk or a mesh format"));
-  r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --guide nan,0");  // nan passed the range
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, testing::HasSubstr("--guide: expected C1[,C0] with values in [-1, 1]"));
+  refused("-o " + path(dir / "same.off") + " --interior " + path(dir / "same.off"),
+          testing::HasSubstr("must name different files"));
+  refused("-o " + path(dir / "e.off") + " --interior " + path(dir / "i.xyz"),
+          testing::HasSubstr("i.xyz: the interior's triangles need .vtk or a mesh format"));
+  refused("-o " + path(dir / "e.off") + " --guide nan,0",  // nan passed the range
+          testing::HasSubstr("--guide: expected C1[,C0] with values in [-1, 1]"));
 }
 
 TEST(Cli, GraphsIn2DAnd3D) {
