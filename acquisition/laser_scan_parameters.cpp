@@ -73,7 +73,8 @@ LaserScanParameters laser_scan_parameters_from_json(const json& value, const std
   read_key(value, "minimum_width", where, l.minimum_width, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
   read_key(value, "maximum_width", where, l.maximum_width, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
   if (l.minimum_width > l.maximum_width)
-    throw InvalidInput(where + ".minimum_width (" + std::to_string(l.minimum_width) + ") is greater than maximum_width (" + std::to_string(l.maximum_width) + "): no stripe could be kept");
+    throw InvalidInput(where + ".minimum_width (" + std::to_string(l.minimum_width) + ") is greater than maximum_width (" +
+                       std::to_string(l.maximum_width) + "): no stripe could be kept");
   read_key(value, "saturation", where, l.saturation, [](int v) { return v >= 1 && v <= 255; }, "1..255", missing);
   read_key(value, "double_peak_ratio", where, l.double_peak_ratio, positive, "a positive number", missing);
   if (const auto it = value.find("region"); it != value.end()) {

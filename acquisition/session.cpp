@@ -7,9 +7,9 @@
 #include "core/io/station_geometry_json.h"
 #include "core/log.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <algorithm>
 #include <cstring>
 #include <fcntl.h>
 #include <opencv2/core/utility.hpp>

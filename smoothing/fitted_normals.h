@@ -25,8 +25,8 @@ namespace scanstation {
 /// they lie on one line, or where the fitted plane turns more than 45° from
 /// it (the vertex's faces are not the sampled surface there: a hull face
 /// over space the scan never saw, a sharp edge), and zero for a vertex in no
-/// face, as vertex_normals gives. Throws InvalidInput for a neighbour count out of
-/// range.
+/// face, as vertex_normals gives. Throws InvalidInput for a neighbour count
+/// out of range.
 Eigen::MatrixX3d fitted_vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int neighbours = 16);
 
 }  // namespace scanstation

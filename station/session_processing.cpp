@@ -135,8 +135,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
                      const SessionProcessing& options, const LiveBoundary* grown) {
   const fs::path mesh_path = folder / "mesh.ply", smooth_path = folder / "smooth.ply",
                  patches_path = folder / "patches.json", preview_path = folder / "preview.png";
-  for (const char* name : {"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png", "report.json"})
-    io::check_writable(folder / name, options.overwrite);
+  for (const char* name : kResultFiles) io::check_writable(folder / name, options.overwrite);
   Stopwatch watch;
   json seconds;
 

@@ -11,6 +11,7 @@
 #include "smoothing/surface_smoothing.h"
 #include "station/live_boundary.h"
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -71,5 +72,9 @@ struct SessionProcessing {
 /// so and points.ply is still written. Returns the report.
 nlohmann::json process_session(const acquisition::SessionContents& session, const std::filesystem::path& folder,
                                const SessionProcessing& options, const LiveBoundary* grown = nullptr);
+
+/// The files process_session writes into its folder.
+inline constexpr std::array<const char*, 6> kResultFiles{"points.ply",   "mesh.ply",    "smooth.ply",
+                                                         "patches.json", "preview.png", "report.json"};
 
 }  // namespace scanstation::station

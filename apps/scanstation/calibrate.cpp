@@ -324,7 +324,7 @@ class CalibrateCommand final : public Command {
                    "Height of the board's lowest inner corner above the platter top (mm)")
         ->check(finite_range(-1e6, 1e6));
     sub.add_option("--views", sim_views_, "With --backend sim: turntable angles rendered")
-        ->check(CLI::Range(1, 360))
+        ->check(integer_in(1, 360))
         ->capture_default_str();
   }
 

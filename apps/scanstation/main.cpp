@@ -7,11 +7,12 @@
 #include "core/log.h"
 #include "core/process_memory.h"
 #include "core/version.h"
+#include "station/session_processing.h"
 
 #include <cstdio>
 #include <exception>
+#include <algorithm>
 #include <filesystem>
-#include <set>
 
 namespace {
 
@@ -26,10 +27,11 @@ void refuse_report_over_a_file_of_the_command(app::Command& command) {
     if (option->get_name() == "--report") continue;
     for (const std::string& value : option->results()) {
       const std::filesystem::path named = std::filesystem::path(value).lexically_normal();
-      const bool flow_file = command.makes_output_folder() && report.parent_path() == named &&
-                             std::set<std::string>{"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png",
-                                                   "report.json", "manifest.json", "journal.jsonl", "object.ply"}
-                                 .count(report.filename().string()) > 0;
+      const std::string name = report.filename().string();
+      const bool flow_file =
+          command.makes_output_folder() && report.parent_path() == named &&
+          (std::find(station::kResultFiles.begin(), station::kResultFiles.end(), name) != station::kResultFiles.end() ||
+           name == "manifest.json" || name == "journal.jsonl" || name == "object.ply" || name == "frames");
       if (named == report || flow_file)
         throw InvalidInput("--report " + command.report_path() + ": " +
                            (flow_file ? "a file of the session folder " + value
@@ -92,7 +94,7 @@ int run(int argc, char** argv) {
     const auto overwrite = command->force() ? io::Overwrite::replace : io::Overwrite::refuse;
     // A report in a missing folder is refused before the work (it failed at
     // the end, exit 2), unless the command makes its output folder: scan,
-    // demo and replay take --report SESSION/report.json.
+    // demo and replay take --report SESSION/scan.json.
     if (!command->report_path().empty()) {
       refuse_report_over_a_file_of_the_command(*command);
       if (command->makes_output_folder())

@@ -38,8 +38,7 @@ class ReplayCommand final : public Command {
 
   void run(CommandContext& context) override {
     const std::filesystem::path out = folder_.empty() ? session_ / "replay" : folder_;
-    for (const char* name : {"points.ply", "mesh.ply", "smooth.ply", "patches.json", "preview.png", "report.json"})
-      io::check_writable(out / name, context.overwrite);
+    for (const char* name : station::kResultFiles) io::check_writable(out / name, context.overwrite);
     const acquisition::SessionContents contents = acquisition::read_session(session_);
     // Damage is reported and what is intact replayed; a session with nothing
     // intact is an error, not an empty result.
