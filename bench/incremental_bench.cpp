@@ -104,8 +104,8 @@ int timing(const Args& a) {
   const std::size_t n = order.size();
   std::printf("%s (subdivision %d, noise %g), %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), a.subdivision,
               a.noise, n, a.batches, a.scan ? "scan" : "random", a.margin);
-  std::printf("%6s %9s %10s %10s %8s %9s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "cpu_ratio",
-              "touched", "rings", "wide", "all");
+  std::printf("%6s %9s %10s %10s %8s %9s %7s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "cpu_ratio",
+              "joined", "touched", "rings", "wide", "all");
   IncrementalConstriction inc(surface_defaults(), a.margin);
   std::vector<double> ratios, cpu_ratios, times;
   const int fed = a.stop_after >= 0 ? std::min(a.stop_after, a.batches) : a.batches;
@@ -129,8 +129,8 @@ int timing(const Args& a) {
         cpu_ratios.push_back(inc_cpu / scratch_cpu);
       }
     }
-    std::printf("%6d %9zu %10.4f %10.4f %8.4f %9.4f %9zu %6d %5d %d\n", b, s.points_so_far, s.seconds, scratch,
-                scratch > 0 ? s.seconds / scratch : 0.0, scratch_cpu > 0 ? inc_cpu / scratch_cpu : 0.0, s.tetrahedra_touched,
+    std::printf("%6d %9zu %10.4f %10.4f %8.4f %9.4f %7zu %9zu %6d %5d %d\n", b, s.points_so_far, s.seconds, scratch,
+                scratch > 0 ? s.seconds / scratch : 0.0, scratch_cpu > 0 ? inc_cpu / scratch_cpu : 0.0, s.points_joined, s.tetrahedra_touched,
                 s.rings, s.wider_repair, s.all_on_boundary);
   }
   std::printf("median per-batch time %.4f s; median ratio to from scratch %.4f wall, %.4f thread CPU (%zu batches compared); "

@@ -1,6 +1,7 @@
 #include "reconstruct/incremental_constriction.h"
 
 #include "core/errors.h"
+#include "reconstruct/gamma_indicator.h"
 #include "reconstruct/line_of_sight.h"
 #include "reconstruct/surface_link.h"
 
@@ -10,7 +11,7 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/property_map.h>
-#include <CGAL/spatial_sort.h>
+#include <CGAL/hilbert_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -18,6 +19,7 @@
 #include <iterator>
 #include <numeric>
 #include <span>
+#include <tuple>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,7 +35,8 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // constricted again. `local` numbers the cell in the complex of one repair.
 struct CellInfo {
   int local = -1;
-  unsigned visit = 0;  // the walk that last reached the cell (State::star)
+  unsigned visit = 0;   // the walk that last reached the cell (State::star, State::joinable)
+  unsigned filled = 0;  // the batch that filled the cell (made it, kept, to be re-decided); 0: none
   char kept = 1;
 };
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;  // the point's index
@@ -55,6 +58,9 @@ constexpr int kUnfreezeRings = 1;
 // after the rings: a thinner skin than a third ring of whole stars (measured
 // in docs/design.md, incremental constriction).
 constexpr int kSkinLayers = 2;
+// The longest crossing curve a new point is joined over (joinable): a
+// longer one is a degenerate zone (many co-spherical points) and re-decided.
+constexpr std::size_t kMaxJoinCycle = 64;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
 // = Σ_v (1 − f(v)/6), f(v) the triangles at v (E = 3F/2): six times a
@@ -107,6 +113,35 @@ struct IncrementalConstriction::State {
   std::size_t pending_count = 0, wider = 0;
   Vertex hint;
   bool started = false;
+  unsigned batch = 0;  // batches so far (CellInfo::filled)
+  std::size_t joined_faces = 0;  // cone triangles of the points joined in this batch
+
+  // Scratch of insert_point for one new point: its conflict zone (the cells
+  // Bowyer–Watson insertion deletes) and the zone's boundary facets, each
+  // seen from inside, with the cell outside it (which insertion keeps: the
+  // new cell on the facet is its neighbour there) and the flag of the cell
+  // inside; where the boundary crosses the zone's boundary (joinable).
+  struct HoleFacet {
+    Cell outer;
+    int mirror;  // the facet's index in outer
+    char kept;   // of the deleted cell inside
+  };
+  std::vector<Cell> conflict;
+  std::vector<Delaunay::Facet> hole;
+  std::vector<HoleFacet> hole_facets;
+  std::vector<std::array<int, 2>> crossing;     // the hole's edges between a kept and a removed facet, sorted
+  std::vector<int> crossing_points;             // their points, sorted
+  std::vector<std::array<int, 2>> disc_edges;   // edges of the boundary triangles inside the zone, sorted
+  std::vector<std::pair<int, int>> f_change;    // (point, change of f) when the point joins
+  int tip = -1;                                 // joinable_by_one_cell's facet, else −1
+  // Per batch: the finite points of each new point's conflict zone (all
+  // but the infinite vertex), zone_points[zone_from[k], zone_from[k + 1])
+  // for the k-th point inserted; which new points were joined (in the
+  // order of `fresh`).
+  std::vector<Vertex> zone_points;
+  std::vector<std::size_t> zone_from;
+  std::vector<Vertex> zone_vertex;  // the k-th point inserted
+  std::vector<char> fresh_joined;
 
   // The finite cells around each point, found by a walk across the faces at
   // the point, all stars in one array. Insertion alone changes them: a
@@ -129,6 +164,15 @@ struct IncrementalConstriction::State {
   // answers without testing the cell's vertices against the infinite one.
   bool kept(Cell c) const { return c->info().kept; }
 
+  // A fresh mark for CellInfo::visit.
+  unsigned next_visit() {
+    if (++visit_stamp == 0) {  // wrapped: no cell may look visited
+      for (const Cell c : dt.all_cell_handles()) c->info().visit = 0;
+      visit_stamp = 1;
+    }
+    return visit_stamp;
+  }
+
   struct Star {
     const Cell* first;
     const Cell* last;
@@ -142,11 +186,7 @@ struct IncrementalConstriction::State {
       slot = static_cast<int>(star_range.size());
       starred.push_back(v->info());
       const std::size_t from = star_cells.size();
-      if (++visit_stamp == 0) {  // wrapped: no cell may look visited
-        for (const Cell c : dt.all_cell_handles()) c->info().visit = 0;
-        visit_stamp = 1;
-      }
-      const unsigned stamp = visit_stamp;
+      const unsigned stamp = next_visit();
       int on_hull = 0;
       walk.assign(1, v->cell());
       v->cell()->info().visit = stamp;
@@ -177,23 +217,17 @@ struct IncrementalConstriction::State {
   }
   // After a batch's insertion: keeps the stars the last batch used that the
   // insertion did not change, forgets the others. A point's star changes
-  // only when a cell around it is destroyed, and the cavity then makes new
-  // cells at that point and the new one; later insertions of the batch that
-  // destroy those make others with it and their own new point. So the
-  // changed stars are those of the points of the cells around the new
-  // points (whose stars are found here first; all are kept).
-  void carry_stars_over(const std::vector<Vertex>& fresh) {
+  // exactly when a cell around it is deleted, i.e. when it is a point of a
+  // new point's conflict zone (zone_points).
+  void carry_stars_over() {
     std::vector<int> changed;
-    for (const Vertex v : fresh)
-      for (const Cell c : star(v))
-        for (int k = 0; k < 4; ++k) {
-          const auto id = static_cast<std::size_t>(c->vertex(k)->info());
-          if (star_slot[id] >= 0 && !star_changed[id] && c->vertex(k) != v) {
-            star_changed[id] = 1;
-            changed.push_back(static_cast<int>(id));
-          }
-        }
-    for (const Vertex v : fresh) star_changed[static_cast<std::size_t>(v->info())] = 0;  // found just now
+    for (const Vertex v : zone_points) {
+      const auto id = static_cast<std::size_t>(v->info());
+      if (star_slot[id] >= 0 && !star_changed[id]) {
+        star_changed[id] = 1;
+        changed.push_back(static_cast<int>(id));
+      }
+    }
     std::vector<int> kept_points;
     std::vector<std::array<std::size_t, 2>> ranges;
     std::vector<int> on_hull;
@@ -333,39 +367,6 @@ struct IncrementalConstriction::State {
       }
     for (const Cell c : seen) c->info().local = -1;
     return found;
-  }
-
-  // The connected parts of a set of cells, joined through shared points:
-  // cells (or points) of different parts share no face, edge or point, so
-  // their boundary triangles and removability never depend on each other.
-  struct Parts {
-    std::vector<Vertex> vertices;  // the distinct points of the cells
-    std::vector<int> of_vertex;    // the part of vertices[k]
-    std::vector<int> of_cell;      // the part of cells[i], numbered in the order of their first cells
-    int count = 0;
-  };
-  Parts parts_of(const std::vector<Cell>& cells) {
-    Parts p;
-    p.vertices = vertices_of(cells);
-    for (std::size_t k = 0; k < p.vertices.size(); ++k) local_vertex[static_cast<std::size_t>(p.vertices[k]->info())] = static_cast<int>(k);
-    const auto number = [&](Vertex v) { return static_cast<std::size_t>(local_vertex[static_cast<std::size_t>(v->info())]); };
-    std::vector<std::size_t> parent(p.vertices.size());  // union-find over the points
-    std::iota(parent.begin(), parent.end(), std::size_t{0});
-    const auto find = [&](std::size_t a) {
-      while (parent[a] != a) a = parent[a] = parent[parent[a]];
-      return a;
-    };
-    for (const Cell c : cells)
-      for (int k = 1; k < 4; ++k) parent[find(number(c->vertex(k)))] = find(number(c->vertex(0)));
-    std::vector<int> label(p.vertices.size(), -1);
-    for (const Cell c : cells) {
-      int& l = label[find(number(c->vertex(0)))];
-      if (l < 0) l = p.count++;
-      p.of_cell.push_back(l);
-    }
-    for (const Vertex v : p.vertices) p.of_vertex.push_back(label[find(number(v))]);
-    for (const Vertex v : p.vertices) local_vertex[static_cast<std::size_t>(v->info())] = -1;
-    return p;
   }
 
   // The connected parts of the fill (joined through shared points), kept up
@@ -697,29 +698,230 @@ struct IncrementalConstriction::State {
           }
   }
 
-  // Inserts the batch in spatial order (each point located from the last),
-  // then numbers the new points in the order of their rows.
-  std::vector<Vertex> insert(const Eigen::MatrixX3d& batch) {
-    std::vector<Indexed> input;
-    input.reserve(static_cast<std::size_t>(batch.rows()));
-    for (Eigen::Index i = 0; i < batch.rows(); ++i)
-      input.emplace_back(Kernel::Point_3(batch(i, 0), batch(i, 1), batch(i, 2)), static_cast<int>(i));
-    CGAL::spatial_sort(input.begin(), input.end(), SortTraits());
-    std::vector<std::pair<int, Vertex>> created;
-    for (const auto& [point, row] : input) {
-      const auto before = dt.number_of_vertices();
-      hint = dt.insert(point, hint == Vertex() ? Cell() : hint->cell());
-      if (dt.number_of_vertices() == before) {
-        ++duplicates;
-      } else {
-        created.emplace_back(row, hint);
+  // Whether a cell is kept, the flag of an infinite cell not read (it is
+  // cleared only where star() meets it); a point's number, −1 for the
+  // infinite vertex.
+  char inside(Cell c) const { return !dt.is_infinite(c) && c->info().kept; }
+  int point_id(Vertex v) const { return dt.is_infinite(v) ? -1 : v->info(); }
+
+  // Joining a new point to the boundary without re-constriction. The
+  // boundary crosses the new point's conflict zone (a ball) in the
+  // triangles between its kept and removed cells, a surface whose border
+  // (mod 2) is the crossing curve on the zone's boundary: the edges between
+  // a facet over a kept cell and one over a removed cell. Insertion fills
+  // the zone with the cone from the point over its boundary facets; each
+  // new cell takes the flag of the deleted cell on its facet, so the new
+  // boundary inside the zone is the cone over the crossing curve. When the
+  // old one is a disk whose border is one simple cycle of m edges and holds
+  // all of its points (m − 2 triangles, each inner edge in two of them,
+  // each border edge in one), one disk takes another's place along the
+  // same cycle: the surface stays a closed 2-manifold of the same genus,
+  // every point stays on it (the cone keeps the cycle's points) and the new
+  // point is on it. Its triangles are Delaunay faces, so it stays simple. A
+  // point outside the hull is no exception: with the infinite vertex the
+  // triangulation is one of the 3-sphere, its infinite cells outside, and
+  // no boundary triangle has the infinite vertex. Not joinable: a zone
+  // reaching into cells filled in this batch, or any other crossing; those
+  // points are filled and re-decided by repair(). A point the boundary does
+  // not cross: joinable_by_one_cell. f_change holds the changes of f(v).
+  bool joinable(const Kernel::Point_3& p) {
+    const unsigned stamp = next_visit();
+    for (const Cell c : conflict) {
+      if (c->info().filled == batch) return false;
+      c->info().visit = stamp;
+    }
+    // The old boundary inside the zone (its triangles between two deleted
+    // cells), and its edges.
+    disc_edges.clear();
+    f_change.clear();
+    std::size_t triangles = 0;
+    for (const Cell c : conflict)
+      for (int j = 0; j < 4; ++j) {
+        const Cell n = c->neighbor(j);
+        if (n->info().visit != stamp || !(c < n) || inside(n) == inside(c)) continue;
+        ++triangles;
+        int v[3];
+        for (int k = 0; k < 3; ++k) {
+          v[k] = c->vertex((j + k + 1) & 3)->info();
+          f_change.push_back({v[k], -1});
+        }
+        for (int k = 0; k < 3; ++k) disc_edges.push_back({std::min(v[k], v[(k + 1) % 3]), std::max(v[k], v[(k + 1) % 3])});
+      }
+    tip = -1;
+    if (triangles == 0) return joinable_by_one_cell(p);  // all deleted cells on one side
+    if (triangles + 2 > kMaxJoinCycle) return false;
+    // Its border (edges in one triangle; mod 2 it is the crossing curve)
+    // and its inner edges (in two).
+    std::sort(disc_edges.begin(), disc_edges.end());
+    crossing.clear();
+    for (std::size_t j = 0; j < disc_edges.size();) {
+      std::size_t run = 1;
+      while (j + run < disc_edges.size() && disc_edges[j + run] == disc_edges[j]) ++run;
+      if (run == 1) {
+        crossing.push_back(disc_edges[j]);
+      } else if (run != 2) {
+        return false;
+      }
+      j += run;
+    }
+    const std::size_t m = crossing.size();
+    if (triangles + 2 != m) return false;  // not a disk with every point on its border
+    // One simple cycle: every point on it twice, one walk round covers it.
+    crossing_points.clear();
+    for (const auto& e : crossing) crossing_points.insert(crossing_points.end(), e.begin(), e.end());
+    std::sort(crossing_points.begin(), crossing_points.end());
+    for (std::size_t j = 0; j < 2 * m; j += 2)
+      if (crossing_points[j] != crossing_points[j + 1] || (j + 2 < 2 * m && crossing_points[j + 2] == crossing_points[j]))
+        return false;
+    crossing_points.erase(std::unique(crossing_points.begin(), crossing_points.end()), crossing_points.end());
+    std::size_t steps = 1, last = 0;
+    for (int at = crossing[0][1]; at != crossing[0][0]; ++steps) {
+      if (steps == m) return false;
+      std::size_t e = 0;
+      while (e == last || (crossing[e][0] != at && crossing[e][1] != at)) ++e;
+      at = crossing[e][0] == at ? crossing[e][1] : crossing[e][0];
+      last = e;
+    }
+    if (steps != m) return false;
+    // Every point of the disk is on its border: no point leaves the boundary.
+    for (const auto& [q, change] : f_change)
+      if (!std::binary_search(crossing_points.begin(), crossing_points.end(), q)) return false;
+    for (const int q : crossing_points) f_change.push_back({q, 2});  // two cone triangles at each
+    return true;
+  }
+
+  // The boundary does not cross the zone: the point is inside the solid or
+  // outside it. If a facet of the zone's boundary is a boundary triangle,
+  // the new cell on it is removed (inside) or kept (outside), and every
+  // other new cell takes its deleted cell's flag. Inside, that cell has
+  // one boundary triangle and its opposite vertex, the new point, is not
+  // on the boundary: a removal of §5.3, which keeps the solid a ball.
+  // Outside, the cell is glued to the solid along that one triangle, the
+  // inverse of such a removal. Of several facets, the one whose γ-indicator
+  // (Definition 5.2) with respect to the new point is smallest (inside:
+  // constriction's own choice) or largest (outside: the cell constriction
+  // would remove last). Sets tip to the facet's entry in `hole`.
+  bool joinable_by_one_cell(const Kernel::Point_3& p) {
+    const char side = inside(conflict.front());  // the whole zone's
+    const Eigen::Vector3d apex(p.x(), p.y(), p.z());
+    double best = 0.0;
+    for (std::size_t k = 0; k < hole.size(); ++k) {
+      const auto& [c, i] = hole[k];
+      if (inside(c->neighbor(i)) == side) continue;
+      Eigen::Vector3d corner[3];
+      for (int j = 0; j < 3; ++j) {
+        const auto& q = c->vertex((i + j + 1) & 3)->point();
+        corner[j] = Eigen::Vector3d(q.x(), q.y(), q.z());
+      }
+      const double g = gamma_indicator(corner[0], corner[1], corner[2], apex);
+      if (tip < 0 || (side ? g < best : g > best)) {
+        tip = static_cast<int>(k);
+        best = g;
       }
     }
-    std::sort(created.begin(), created.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (tip < 0) return false;
+    f_change.clear();
+    const auto& [c, i] = hole[static_cast<std::size_t>(tip)];
+    for (int j = 0; j < 3; ++j) f_change.push_back({c->vertex((i + j + 1) & 3)->info(), 1});  // one triangle for two
+    return true;
+  }
+
+  // Inserts one point (dimension 3) as `id`: joined to the boundary when
+  // joinable() (returns true in `joined`), else its new cells are filled.
+  // Returns its vertex, or none for a point received before.
+  Vertex insert_point(const Kernel::Point_3& p, int id, bool& joined) {
+    Delaunay::Locate_type lt;
+    int li = 0, lj = 0;
+    const Cell at = dt.locate(p, lt, li, lj, hint == Vertex() ? Cell() : hint->cell());
+    if (lt == Delaunay::VERTEX) {
+      hint = at->vertex(li);
+      return Vertex();
+    }
+    conflict.clear();
+    hole.clear();
+    dt.find_conflicts(p, at, std::back_inserter(hole), std::back_inserter(conflict));
+    joined = started && joinable(p);
+    hole_facets.clear();
+    for (const auto& [c, i] : hole) {
+      hole_facets.push_back({c->neighbor(i), dt.mirror_index(c, i), inside(c)});
+      for (int k = 1; k < 4; ++k)
+        if (const Vertex v = c->vertex((i + k) & 3); !dt.is_infinite(v)) zone_points.push_back(v);
+    }
+    zone_from.push_back(zone_points.size());
+    // The facet CGAL's own insert starts from (the same triangulation either way).
+    hint = dt.insert_in_hole(p, conflict.begin(), conflict.end(), hole.back().first, hole.back().second);
+    hint->info() = id;
+    for (std::size_t k = 0; k < hole_facets.size(); ++k) {
+      const HoleFacet& h = hole_facets[k];
+      CellInfo& info = h.outer->neighbor(h.mirror)->info();
+      if (joined) {
+        info.kept = static_cast<char>(h.kept != (static_cast<int>(k) == tip));
+      } else {
+        info.filled = batch;
+      }
+    }
+    if (joined) {
+      const std::size_t f = tip >= 0 ? 3 : crossing.size();
+      faces_at.resize(static_cast<std::size_t>(id) + 1, 0);
+      for (const auto& [q, change] : f_change) faces_at[static_cast<std::size_t>(q)] += change;
+      faces_at[static_cast<std::size_t>(id)] = static_cast<int>(f);
+      corners += 6;  // F = 2V − 4 grows by 2 (m cone triangles for m − 2; three for one)
+      joined_faces += f;
+    }
+    return hint;
+  }
+
+  // Inserts the batch in spatial order (each point located from the last),
+  // then numbers the new points in the order of their rows. Returns the new
+  // points; `joined` counts those joined to the boundary (joinable).
+  std::vector<Vertex> insert(const Eigen::MatrixX3d& batch_points, std::size_t& joined) {
+    std::vector<Indexed> input;
+    input.reserve(static_cast<std::size_t>(batch_points.rows()));
+    for (Eigen::Index i = 0; i < batch_points.rows(); ++i)
+      input.emplace_back(Kernel::Point_3(batch_points(i, 0), batch_points(i, 1), batch_points(i, 2)), static_cast<int>(i));
+    // Hilbert order without the random rounds of spatial_sort (which suit
+    // a triangulation built from nothing): each point is located from the
+    // last, in a triangulation that already spans the batch.
+    CGAL::hilbert_sort(input.begin(), input.end(), SortTraits());
+    std::vector<std::tuple<int, Vertex, char>> created;  // row, vertex, joined
+    const std::size_t base = points.size();
+    zone_points.clear();
+    zone_from.assign(1, 0);
+    zone_vertex.clear();
+    for (const auto& [point, row] : input) {
+      // New points are numbered in insertion order meanwhile (base + k).
+      const int id = static_cast<int>(base + created.size());
+      Vertex v;
+      bool joined_now = false;
+      if (dt.dimension() == 3) {
+        v = insert_point(point, id, joined_now);
+        if (v != Vertex()) zone_vertex.push_back(v);
+      } else {
+        const auto before = dt.number_of_vertices();
+        hint = dt.insert(point, hint == Vertex() ? Cell() : hint->cell());
+        if (dt.number_of_vertices() != before) {
+          v = hint;
+          v->info() = id;
+        }
+      }
+      if (v == Vertex()) {
+        ++duplicates;
+        continue;
+      }
+      joined += joined_now;
+      created.emplace_back(row, v, joined_now);
+    }
+    std::sort(created.begin(), created.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
+    faces_at.resize(base + created.size(), 0);
+    std::vector<int> f(created.size());
+    for (std::size_t k = 0; k < created.size(); ++k) f[k] = faces_at[static_cast<std::size_t>(std::get<1>(created[k])->info())];
+    std::copy(f.begin(), f.end(), faces_at.begin() + static_cast<std::ptrdiff_t>(base));
     std::vector<Vertex> fresh;
-    for (const auto& [row, v] : created) {
+    fresh_joined.clear();
+    for (const auto& [row, v, joined_now] : created) {
+      fresh_joined.push_back(joined_now);
       v->info() = static_cast<int>(points.size());
-      points.push_back(batch.row(row).transpose());
+      points.push_back(batch_points.row(row).transpose());
       viewpoint_of.push_back(batch_viewpoint);
       source.push_back(received + row);
       fresh.push_back(v);
@@ -734,28 +936,57 @@ struct IncrementalConstriction::State {
     inner.resize(points.size(), -1);
     repaired_by.resize(points.size(), -1);
     star_changed.resize(points.size(), 0);
-    received += batch.rows();
+    received += batch_points.rows();
     return fresh;
   }
 
-  // The margin rings around the parts of the new cells (joined through
-  // shared points) that hold at least a tenth of the batch's new points: a
-  // scan front, where the old boundary capped space not scanned yet and was
-  // carved without these points. A part of a few points among many (a batch
-  // spread over the surface, as in random order) refines the boundary where
-  // it already was, and rings around every one of them would cover the
-  // whole surface.
-  std::vector<Cell> with_margin(const std::vector<Cell>& created, const std::vector<Vertex>& fresh) {
-    if (margin == 0) return created;
-    const Parts parts = parts_of(created);
-    std::vector<std::size_t> fresh_in(static_cast<std::size_t>(parts.count), 0);
-    for (const Vertex v : fresh) local_vertex[static_cast<std::size_t>(v->info())] = 0;
-    for (std::size_t k = 0; k < parts.vertices.size(); ++k)
-      fresh_in[static_cast<std::size_t>(parts.of_vertex[k])] += local_vertex[static_cast<std::size_t>(parts.vertices[k]->info())] == 0;
-    for (const Vertex v : fresh) local_vertex[static_cast<std::size_t>(v->info())] = -1;
-    std::vector<Cell> front, rest;
-    for (std::size_t i = 0; i < created.size(); ++i)
-      (10 * fresh_in[static_cast<std::size_t>(parts.of_cell[i])] >= fresh.size() ? front : rest).push_back(created[i]);
+  // The new points' cells to re-decide: a scan front's all (filled, its
+  // joined points' too), elsewhere the cells of the points not joined
+  // (joinable). The new points are parted by their conflict zones: two are
+  // in one part when their zones share a point (a union-find over the
+  // zones' points), so two new points with a cell in common are; a part
+  // holding a tenth of the batch's new points is a front.
+  void new_cells(const std::vector<Vertex>& fresh, std::vector<Cell>& front, std::vector<Cell>& rest) {
+    FillParts zones;
+    for (std::size_t k = 0; k < zone_vertex.size(); ++k) {
+      const int a = zones.find(fill_number(zones, zone_vertex[k]));
+      for (std::size_t j = zone_from[k]; j < zone_from[k + 1]; ++j)
+        zones.parent[static_cast<std::size_t>(zones.find(fill_number(zones, zone_points[j])))] = a;
+    }
+    const auto part = [&](Vertex v) { return static_cast<std::size_t>(zones.find(fill_vertex[static_cast<std::size_t>(v->info())])); };
+    std::vector<std::size_t> fresh_in(zones.vertices.size(), 0);
+    for (const Vertex v : fresh) ++fresh_in[part(v)];
+    for (std::size_t k = 0; k < fresh.size(); ++k) {
+      const bool in_front = 10 * fresh_in[part(fresh[k])] >= fresh.size();
+      if (!in_front && fresh_joined[k]) continue;
+      for (const Cell c : star(fresh[k])) {
+        if (c->info().local >= 0) continue;
+        if (in_front) {
+          c->info().kept = 1;
+          front.push_back(c);
+        } else if (c->info().filled == batch) {
+          rest.push_back(c);
+        } else {
+          continue;
+        }
+        c->info().local = 0;
+      }
+    }
+    forget(zones);
+    for (const Cell c : front) c->info().local = -1;
+    for (const Cell c : rest) c->info().local = -1;
+  }
+
+  // The margin rings around the scan fronts' new cells (new_cells): where
+  // the old boundary capped space not scanned yet and was carved without
+  // these points. A part of a few points among many (a batch spread over
+  // the surface, as in random order) refines the boundary where it already
+  // was, and rings around every one of them would cover the whole surface.
+  std::vector<Cell> with_margin(std::vector<Cell> front, const std::vector<Cell>& rest) {
+    if (margin == 0) {
+      front.insert(front.end(), rest.begin(), rest.end());
+      return front;
+    }
     for (const Cell c : rest) c->info().local = 0;  // not taken into the front's rings
     for (const Cell c : front) c->info().local = 0;
     // A ring: the kept cells around every point of the front, then the
@@ -824,17 +1055,10 @@ struct IncrementalConstriction::State {
 
   // Fill, check, constrict again (see the class comment).
   void repair(const std::vector<Vertex>& fresh, BatchStats& s) {
-    std::vector<Cell> region;
-    carry_stars_over(fresh);
-    for (const Vertex v : fresh) {  // the new cells, in a deterministic order
-      for (const Cell c : star(v))
-        if (c->info().local < 0) {
-          c->info().local = 0;
-          region.push_back(c);
-        }
-    }
-    for (const Cell c : region) c->info().local = -1;
-    region = with_margin(region, fresh);
+    carry_stars_over();
+    std::vector<Cell> front, rest;
+    new_cells(fresh, front, rest);
+    std::vector<Cell> region = with_margin(std::move(front), rest);
     FillParts parts;
     const bool ball = fill_to_ball(region, parts);
     for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = -1;
@@ -870,7 +1094,8 @@ struct IncrementalConstriction::State {
           grow(piece, [](Cell c) { return c->info().kept != 0; });
         }
       }
-      s.faces_changed = patch_size();
+      // The joined points' cone triangles too (some of them re-decided in a front).
+      s.faces_changed = std::min(patch_size() + joined_faces, static_cast<std::size_t>(corners / 3));
       return;
     }
     forget(parts);
@@ -908,7 +1133,9 @@ BatchStats IncrementalConstriction::add_batch(const Eigen::MatrixX3d& batch, con
   }
   BatchStats stats;
   stats.points_received = static_cast<std::size_t>(batch.rows());
-  const std::vector<Vertex> fresh = s.insert(batch);
+  ++s.batch;
+  s.joined_faces = 0;
+  const std::vector<Vertex> fresh = s.insert(batch, stats.points_joined);
   stats.points_inserted = fresh.size();
   if (s.dt.dimension() == 3) {
     if (!s.started) {

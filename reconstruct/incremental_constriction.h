@@ -19,6 +19,7 @@ namespace scanstation {
 struct BatchStats {
   std::size_t points_received = 0;     ///< rows of the batch
   std::size_t points_inserted = 0;     ///< new distinct points (the others repeat a point received before)
+  std::size_t points_joined = 0;       ///< of those, joined to the boundary by insertion alone (no re-decision)
   std::size_t points_so_far = 0;       ///< distinct points after the batch
   std::size_t tetrahedra_touched = 0;  ///< Delaunay cells the repair looked at (re-decided, and frozen around them)
   std::size_t faces_changed = 0;       ///< boundary triangles of the repaired patch (at a point whose star changed)

@@ -16,6 +16,7 @@
 #include "test_support.h"
 #include "valid_surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -120,10 +121,48 @@ TEST(IncrementalConstriction, RandomOrderBatchTouchesALocalRegion) {
   IncrementalConstriction inc;
   BatchStats s;
   for (std::size_t from = 0; from < order.size(); from += 200) s = inc.add_batch(sim::ordered_rows(P, order, from, from + 200));
-  std::printf("last batch of 200: %zu cells touched, %zu points so far\n", s.tetrahedra_touched, s.points_so_far);
+  std::printf("last batch of 200: %zu joined, %zu cells touched, %zu points so far\n", s.points_joined, s.tetrahedra_touched,
+              s.points_so_far);
   EXPECT_LT(s.tetrahedra_touched, 2 * s.points_so_far);
+  // Most points of a batch spread over the surface are joined at insertion
+  // (the boundary crosses their conflict zone in one disk): only the others
+  // are re-decided.
+  EXPECT_GT(s.points_joined, s.points_inserted * 8 / 10);
   EXPECT_EQ(inc.wider_repairs(), 0u);
   expect_boundary_through_all(inc, s, "sphere, last batch");
+}
+
+// Points joined at insertion (no re-decision) must leave the same kind of
+// boundary: a lattice on a box's faces and inside it (coplanar rows,
+// co-spherical quadruples everywhere, points inside the solid, on its
+// boundary and in carved-out space), and the lattice's points again
+// (duplicates), in random order and small batches, each checked from
+// scratch by expect_valid_surface and by F = 2V − 4.
+TEST(IncrementalConstriction, JoinedPointsOnALatticeKeepAValidBoundary) {
+  std::vector<Eigen::Vector3d> rows;
+  for (int x = 0; x <= 6; ++x)
+    for (int y = 0; y <= 4; ++y)
+      for (int z = 0; z <= 3; ++z)
+        if (x == 0 || x == 6 || y == 0 || y == 4 || z == 0 || z == 3 || (x + y + z) % 5 == 0) rows.emplace_back(x, y, 0.5 * z);
+  Eigen::MatrixX3d P(static_cast<Eigen::Index>(2 * rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    P.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+    P.row(static_cast<Eigen::Index>(i + rows.size())) = rows[i].transpose();
+  }
+  for (const std::uint64_t seed : {1u, 2u, 3u, 4u}) {
+    IncrementalConstriction inc;
+    const std::vector<Eigen::Index> order = sim::shuffled_order(P.rows(), seed);
+    std::size_t joined = 0;
+    for (std::size_t from = 0; from < order.size(); from += 12) {
+      const std::size_t to = std::min(order.size(), from + 12);
+      const BatchStats s = inc.add_batch(sim::ordered_rows(P, order, from, to));
+      joined += s.points_joined;
+      EXPECT_LE(s.points_joined, s.points_inserted);
+      expect_boundary_through_all(inc, s, "lattice seed " + std::to_string(seed) + ", rows " + std::to_string(from));
+    }
+    EXPECT_GT(joined, 0u) << "seed " << seed;
+    EXPECT_EQ(inc.point_count(), static_cast<Eigen::Index>(rows.size()));
+  }
 }
 
 TEST(IncrementalConstriction, CoSphericalPointsInSmallBatches) {
