@@ -61,6 +61,9 @@ constexpr int kSkinLayers = 2;
 // The longest crossing curve a new point is joined over (joinable): a
 // longer one is a degenerate zone (many co-spherical points) and re-decided.
 constexpr std::size_t kMaxJoinCycle = 64;
+// Passes over the points a batch could not join when their turn came
+// (State::insert); in the last one they are filled.
+constexpr int kJoinPasses = 2;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
 // = Σ_v (1 − f(v)/6), f(v) the triangles at v (E = 3F/2): six times a
@@ -116,7 +119,7 @@ struct IncrementalConstriction::State {
   unsigned batch = 0;  // batches so far (CellInfo::filled)
   std::size_t joined_faces = 0;  // cone triangles of the points joined in this batch
 
-  // Scratch of insert_point for one new point: its conflict zone (the cells
+  // Scratch of find_zone and insert_in_zone for one new point: its conflict zone (the cells
   // Bowyer–Watson insertion deletes) and the zone's boundary facets, each
   // seen from inside, with the cell outside it (which insertion keeps: the
   // new cell on the facet is its neighbour there) and the flag of the cell
@@ -826,21 +829,25 @@ struct IncrementalConstriction::State {
     return true;
   }
 
-  // Inserts one point (dimension 3) as `id`: joined to the boundary when
-  // joinable() (returns true in `joined`), else its new cells are filled.
-  // Returns its vertex, or none for a point received before.
-  Vertex insert_point(const Kernel::Point_3& p, int id, bool& joined) {
+  // Locates p (dimension 3) and finds its conflict zone (conflict, hole);
+  // false for a point already in the triangulation.
+  bool find_zone(const Kernel::Point_3& p) {
     Delaunay::Locate_type lt;
     int li = 0, lj = 0;
     const Cell at = dt.locate(p, lt, li, lj, hint == Vertex() ? Cell() : hint->cell());
     if (lt == Delaunay::VERTEX) {
       hint = at->vertex(li);
-      return Vertex();
+      return false;
     }
     conflict.clear();
     hole.clear();
     dt.find_conflicts(p, at, std::back_inserter(hole), std::back_inserter(conflict));
-    joined = started && joinable(p);
+    return true;
+  }
+
+  // Inserts p as `id` into the zone find_zone found: joined to the boundary
+  // (after joinable() said so), else with its new cells filled.
+  Vertex insert_in_zone(const Kernel::Point_3& p, int id, bool joined) {
     hole_facets.clear();
     for (const auto& [c, i] : hole) {
       hole_facets.push_back({c->neighbor(i), dt.mirror_index(c, i), inside(c)});
@@ -851,6 +858,7 @@ struct IncrementalConstriction::State {
     // The facet CGAL's own insert starts from (the same triangulation either way).
     hint = dt.insert_in_hole(p, conflict.begin(), conflict.end(), hole.back().first, hole.back().second);
     hint->info() = id;
+    zone_vertex.push_back(hint);
     for (std::size_t k = 0; k < hole_facets.size(); ++k) {
       const HoleFacet& h = hole_facets[k];
       CellInfo& info = h.outer->neighbor(h.mirror)->info();
@@ -888,28 +896,54 @@ struct IncrementalConstriction::State {
     zone_points.clear();
     zone_from.assign(1, 0);
     zone_vertex.clear();
-    for (const auto& [point, row] : input) {
-      // New points are numbered in insertion order meanwhile (base + k).
-      const int id = static_cast<int>(base + created.size());
-      Vertex v;
-      bool joined_now = false;
-      if (dt.dimension() == 3) {
-        v = insert_point(point, id, joined_now);
-        if (v != Vertex()) zone_vertex.push_back(v);
-      } else {
-        const auto before = dt.number_of_vertices();
-        hint = dt.insert(point, hint == Vertex() ? Cell() : hint->cell());
-        if (dt.number_of_vertices() != before) {
-          v = hint;
-          v->info() = id;
-        }
-      }
+    // New points are numbered in insertion order meanwhile (base + k).
+    const auto add = [&](Vertex v, int row, bool joined_now) {
       if (v == Vertex()) {
         ++duplicates;
-        continue;
+        return;
       }
       joined += joined_now;
       created.emplace_back(row, v, joined_now);
+    };
+    const auto next_id = [&] { return static_cast<int>(base + created.size()); };
+    // Once a boundary exists, a point that cannot be joined waits (up to
+    // kJoinPasses passes over the waiting points): filled at once, its
+    // cells would stop every later point whose zone reaches them from
+    // being joined, while with its neighbours in, its own zone may be
+    // joinable. The triangulation does not depend on the order.
+    std::vector<std::pair<Kernel::Point_3, int>> waiting;
+    for (const auto& [point, row] : input) {
+      if (dt.dimension() < 3) {
+        const auto before = dt.number_of_vertices();
+        hint = dt.insert(point, hint == Vertex() ? Cell() : hint->cell());
+        const bool inserted = dt.number_of_vertices() != before;
+        if (inserted) hint->info() = next_id();
+        add(inserted ? hint : Vertex(), row, false);
+      } else if (!find_zone(point)) {
+        add(Vertex(), row, false);
+      } else if (started && joinable(point)) {
+        add(insert_in_zone(point, next_id(), true), row, true);
+      } else if (started) {
+        waiting.emplace_back(point, row);
+      } else {
+        add(insert_in_zone(point, next_id(), false), row, false);
+      }
+    }
+    for (int pass = 1; !waiting.empty(); ++pass) {
+      const bool last = pass == kJoinPasses;
+      std::vector<std::pair<Kernel::Point_3, int>> still;
+      for (const auto& [point, row] : waiting) {
+        if (!find_zone(point)) {
+          add(Vertex(), row, false);
+        } else if (joinable(point)) {
+          add(insert_in_zone(point, next_id(), true), row, true);
+        } else if (last) {
+          add(insert_in_zone(point, next_id(), false), row, false);
+        } else {
+          still.emplace_back(point, row);
+        }
+      }
+      waiting = std::move(still);
     }
     std::sort(created.begin(), created.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
     faces_at.resize(base + created.size(), 0);
