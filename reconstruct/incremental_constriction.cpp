@@ -61,9 +61,6 @@ constexpr int kSkinLayers = 2;
 // The longest crossing curve a new point is joined over (joinable): a
 // longer one is a degenerate zone (many co-spherical points) and re-decided.
 constexpr std::size_t kMaxJoinCycle = 64;
-// Passes over the points a batch could not join when their turn came
-// (State::insert); in the last one they are filled.
-constexpr int kJoinPasses = 2;
 
 // The Euler characteristic of a closed triangulated 2-manifold is V − E + F
 // = Σ_v (1 − f(v)/6), f(v) the triangles at v (E = 3F/2): six times a
@@ -855,8 +852,15 @@ struct IncrementalConstriction::State {
         if (const Vertex v = c->vertex((i + k) & 3); !dt.is_infinite(v)) zone_points.push_back(v);
     }
     zone_from.push_back(zone_points.size());
-    // The facet CGAL's own insert starts from (the same triangulation either way).
-    hint = dt.insert_in_hole(p, conflict.begin(), conflict.end(), hole.back().first, hole.back().second);
+    // As CGAL's own insert does (the same triangulation either way): a small
+    // hole (nearly all) by the data structure's direct fill, others by the
+    // recursive star from the last boundary facet.
+    if (dt.tds().is_small_hole(hole.size())) {
+      hint = dt.tds()._insert_in_small_hole(conflict, hole);
+      hint->set_point(p);
+    } else {
+      hint = dt.insert_in_hole(p, conflict.begin(), conflict.end(), hole.back().first, hole.back().second);
+    }
     hint->info() = id;
     zone_vertex.push_back(hint);
     for (std::size_t k = 0; k < hole_facets.size(); ++k) {
@@ -906,12 +910,11 @@ struct IncrementalConstriction::State {
       created.emplace_back(row, v, joined_now);
     };
     const auto next_id = [&] { return static_cast<int>(base + created.size()); };
-    // Once a boundary exists, a point that cannot be joined waits (up to
-    // kJoinPasses passes over the waiting points): filled at once, its
-    // cells would stop every later point whose zone reaches them from
-    // being joined, while with its neighbours in, its own zone may be
-    // joinable. The triangulation does not depend on the order.
-    std::vector<std::pair<Kernel::Point_3, int>> waiting;
+    // Once a boundary exists, each point is joined if it can be
+    // (joinable), else filled at once. (Letting it wait for a second pass,
+    // with its neighbours in, joined 0.2% more points in random order, and
+    // in scan order it joined front points that the front's fill re-opens
+    // anyway: 7.0% of from scratch instead of 5.1% at 100k.)
     for (const auto& [point, row] : input) {
       if (dt.dimension() < 3) {
         const auto before = dt.number_of_vertices();
@@ -921,29 +924,10 @@ struct IncrementalConstriction::State {
         add(inserted ? hint : Vertex(), row, false);
       } else if (!find_zone(point)) {
         add(Vertex(), row, false);
-      } else if (started && joinable(point)) {
-        add(insert_in_zone(point, next_id(), true), row, true);
-      } else if (started) {
-        waiting.emplace_back(point, row);
       } else {
-        add(insert_in_zone(point, next_id(), false), row, false);
+        const bool join = started && joinable(point);
+        add(insert_in_zone(point, next_id(), join), row, join);
       }
-    }
-    for (int pass = 1; !waiting.empty(); ++pass) {
-      const bool last = pass == kJoinPasses;
-      std::vector<std::pair<Kernel::Point_3, int>> still;
-      for (const auto& [point, row] : waiting) {
-        if (!find_zone(point)) {
-          add(Vertex(), row, false);
-        } else if (joinable(point)) {
-          add(insert_in_zone(point, next_id(), true), row, true);
-        } else if (last) {
-          add(insert_in_zone(point, next_id(), false), row, false);
-        } else {
-          still.emplace_back(point, row);
-        }
-      }
-      waiting = std::move(still);
     }
     std::sort(created.begin(), created.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
     faces_at.resize(base + created.size(), 0);
@@ -979,7 +963,10 @@ struct IncrementalConstriction::State {
   // (joinable). The new points are parted by their conflict zones: two are
   // in one part when their zones share a point (a union-find over the
   // zones' points), so two new points with a cell in common are; a part
-  // holding a tenth of the batch's new points is a front.
+  // holding a tenth of the batch's new points is a front. (Counting only
+  // the points not joined, a batch of a tenth of the points so far in
+  // random order was no front, and its joined points kept decisions taken
+  // without them: hand's recall 1.9 points lower, batches of 5%.)
   void new_cells(const std::vector<Vertex>& fresh, std::vector<Cell>& front, std::vector<Cell>& rest) {
     FillParts zones;
     for (std::size_t k = 0; k < zone_vertex.size(); ++k) {

@@ -38,10 +38,19 @@ struct BatchStats {
 /// received so far, batch by batch.
 ///
 /// Per batch: the points are inserted into the Delaunay triangulation (CGAL,
-/// exact predicates, no rebuild); the tetrahedra they create start kept
-/// ("filled": the region is re-opened as if it were fresh convex hull), and
-/// so do `margin` rings of cells around the parts of them that form a scan
-/// front (a connected part holding a tenth of the batch's new points) and
+/// exact predicates, no rebuild). A point is joined to the boundary at its
+/// insertion when the boundary crosses its conflict zone in one disk with
+/// all of its points on its border (each new cell takes the flag of the
+/// cell it replaces on its facet, and the cone from the point over the
+/// disk's border takes the disk's place), or when the boundary does not
+/// cross the zone and one new cell on a boundary facet can go (a removal
+/// of §5.3) or come (its inverse): the boundary stays a closed genus-0
+/// 2-manifold through every point, and nothing is re-decided. The
+/// tetrahedra of the other points start kept ("filled": the region is
+/// re-opened as if it were fresh convex hull), and so do, whole, the
+/// parts of the new points that form a scan front (a part, joined through
+/// the points of their conflict zones, holding a tenth of the batch's new
+/// points) and `margin` rings of cells around them and
 /// two layers of cells across a face from those rings (the skin); a
 /// local check (every vertex link of the new boundary a single cycle, no
 /// enclosed pocket, Euler characteristic unchanged in every connected part of
