@@ -115,6 +115,7 @@ class GraphCommand final : public Command {
     const bool json = has_extension(output_, ".json");
     if (cloud.dimension == 2) {
       const Eigen::MatrixX2d V = cloud.positions.leftCols(2);
+      warn_of_segment_lenses(context, V.rows());
       const Eigen::MatrixX2i E = type_ ? named_graph(*type_, V, param_)
                                  : !gamma_.empty() ? gamma_graph(V, gamma_[0], gamma_[1])
                                                    : gamma_graph(V, GammaRange{range_[0], range_[1], range_[2], range_[3]});
@@ -183,6 +184,21 @@ class GraphCommand final : public Command {
     context.log->warn("γ with c1 < 0 in 3D decides each of the {:.3g} triples of {} points: expect roughly {:.0f} "
                       "minutes (1000 points take about 45 s)",
                       triples, n, minutes);
+  }
+
+  // In 2D a lens floor of exactly −1 makes every pair's lens its open
+  // segment: the Yao-cone screen (reconstruct/gamma_graph.h) passes every
+  // pair, and each is tested against the points of its diametral disc, so
+  // the time grows with N³: 1500 points took 46 s on a 2-core machine
+  // (−0.999: 3 s).
+  void warn_of_segment_lenses(CommandContext& context, Eigen::Index n) const {
+    const bool segments = !type_ && (!gamma_.empty() ? gamma_[1] == -1.0 : range_[2] == -1.0);
+    if (!segments || n < 1000) return;
+    const double cubed = static_cast<double>(n) / 1500.0;
+    context.log->warn("γ with c1 = -1 in 2D tests each of the {:.3g} pairs of {} points against the points of its "
+                      "diametral disc: expect roughly {:.0f} s (1500 points take about 45 s; c1 = -0.999 takes "
+                      "seconds)",
+                      static_cast<double>(n) * static_cast<double>(n - 1) / 2.0, n, 46.0 * cubed * cubed * cubed);
   }
 
   void report(CommandContext& context, Eigen::Index count, const char* what) const {
