@@ -165,6 +165,27 @@ TEST(IncrementalConstriction, JoinedPointsOnALatticeKeepAValidBoundary) {
   }
 }
 
+// The grid of locate hints (rebuilt as the points double) must only ever
+// change where a walk starts: a far point arriving mid-scan (its grid cell
+// clamped to the grid's edge) and the points after it still give a valid
+// boundary through every point.
+TEST(IncrementalConstriction, AFarPointMidScanKeepsAValidBoundary) {
+  sim::Random random(11);
+  Eigen::MatrixX3d P(3001, 3);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3d d(random.normal(), random.normal(), random.normal());
+    P.row(i) = d.normalized().transpose();
+  }
+  P.row(1500) << 1e6, 3.0, -2.0;
+  IncrementalConstriction inc;
+  for (Eigen::Index from = 0; from < P.rows(); from += 300) {
+    const Eigen::Index n = std::min<Eigen::Index>(300, P.rows() - from);
+    const BatchStats s = inc.add_batch(P.middleRows(from, n));
+    expect_boundary_through_all(inc, s, "rows from " + std::to_string(from));
+  }
+  EXPECT_EQ(inc.point_count(), P.rows());
+}
+
 TEST(IncrementalConstriction, CoSphericalPointsInSmallBatches) {
   const Eigen::MatrixX3d P = sim::icosphere(2).vertices.positions;  // all on one sphere
   const IncrementalConstriction inc = feed_checked(P, sim::shuffled_order(P.rows(), 8), 12, "icosphere");
