@@ -946,15 +946,16 @@ struct IncrementalConstriction::State {
     CGAL::hilbert_sort(input.begin(), input.end(), SortTraits());
     if (started && points.size() >= 64 && points.size() >= 2 * hint_built_at) build_hint_grid();
     // The grid serves a scattered batch only: where consecutive points (in
-    // Hilbert order) lie within a few grid cells of each other, as along a
-    // scan front, the last point is as near, and the lookups and updates
-    // (a likely cache miss each) only cost (about 1% of a scan-order batch).
-    // A batch that skips the grid leaves it older, not wrong.
+    // Hilbert order) lie within a grid cell of each other on average, as
+    // along a scan front, the last point is as near, and the lookups and
+    // updates (a likely cache miss each) only cost (about 1% of a
+    // scan-order batch). A batch that skips the grid leaves it older, not
+    // wrong.
     use_hints = false;
     if (hint_side > 0.0 && input.size() > 1) {
       double apart = 0.0;
       for (std::size_t k = 1; k < input.size(); ++k) apart += std::sqrt(CGAL::squared_distance(input[k - 1].first, input[k].first));
-      use_hints = apart / static_cast<double>(input.size() - 1) > 4.0 * hint_side;
+      use_hints = apart / static_cast<double>(input.size() - 1) > hint_side;
     }
     std::vector<std::tuple<int, Vertex, char>> created;  // row, vertex, joined
     const std::size_t base = points.size();
