@@ -932,9 +932,10 @@ struct IncrementalConstriction::State {
     return hint;
   }
 
-  // Inserts the batch in spatial order (each point located from the last),
-  // then numbers the new points in the order of their rows. Returns the new
-  // points; `joined` counts those joined to the boundary (joinable).
+  // Inserts the batch in spatial order (each point located from the last,
+  // or in a scattered batch from the grid of hints), then numbers the new
+  // points in the order of their rows. Returns the new points; `joined`
+  // counts those joined to the boundary (joinable).
   std::vector<Vertex> insert(const Eigen::MatrixX3d& batch_points, std::size_t& joined) {
     std::vector<Indexed> input;
     input.reserve(static_cast<std::size_t>(batch_points.rows()));
