@@ -9,10 +9,11 @@
 #include "core/version.h"
 #include "station/session_processing.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
-#include <algorithm>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -83,6 +84,7 @@ int run(int argc, char** argv) {
   }
 
   io::remove_partial_outputs_on_signals();
+  if (progress == "json") set_log_format(LogFormat::json_lines);  // stderr is JSON lines throughout
   set_log_level(quiet ? spdlog::level::err
                       : verbose >= 2 ? spdlog::level::debug
                       : verbose == 1 ? spdlog::level::info
@@ -113,15 +115,29 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
+namespace {
+
+// The last word on stderr: text, or under --progress=json an
+// {"event":"error"} line with the exit code.
+int fail(const char* kind, const char* what, int code) {
+  if (scanstation::log_format() == scanstation::LogFormat::json_lines) {
+    const nlohmann::json line = {{"event", "error"}, {"kind", kind}, {"message", what}, {"exit", code}};
+    std::fprintf(stderr, "%s\n", line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  } else {
+    std::fprintf(stderr, "scanstation: %s: %s\n", kind, what);
+  }
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   scanstation::keep_freed_memory();  // before any thread starts
   try {
     return run(argc, argv);
   } catch (const scanstation::InvalidInput& e) {
-    std::fprintf(stderr, "scanstation: error: %s\n", e.what());
-    return 1;
+    return fail("error", e.what(), 1);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "scanstation: failed: %s\n", e.what());
-    return 2;
+    return fail("failed", e.what(), 2);
   }
 }

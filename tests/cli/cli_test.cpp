@@ -184,6 +184,45 @@ TEST(Cli, JsonProgressIsOneObjectPerLine) {
   EXPECT_GE(done, 1);
 }
 
+// Under --progress=json stderr is JSON lines throughout: warnings come as
+// {"event":"log"} objects and a refused input as {"event":"error"} with the
+// exit code, not as text a reader of the events would choke on.
+TEST(Cli, JsonProgressCarriesWarningsAndErrorsAsJsonLines) {
+  ScratchFolder dir;
+  {
+    std::ofstream(dir / "flat.xyz") << "0 0 0\n1 0 0\n0 1 0\n1 1 0\n0.5 0.3 0\n";  // coplanar: a warning
+  }
+  const auto events = [](const std::string& err) {
+    std::vector<nlohmann::json> out;
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);) out.push_back(nlohmann::json::parse(line));  // throws on text
+    return out;
+  };
+  const Outcome warned =
+      scanstation("--progress=json graph " + path(dir / "flat.xyz") + " --type delaunay -o " + path(dir / "flat.ply"));
+  ASSERT_EQ(warned.exit_code, 0) << warned.err;
+  int logs = 0;
+  for (const nlohmann::json& e : events(warned.err))
+    if (e["event"] == "log") {
+      ++logs;
+      EXPECT_EQ(e["level"], "warning");
+      EXPECT_THAT(e["message"].get<std::string>(), testing::HasSubstr("lie in one plane"));
+    }
+  EXPECT_EQ(logs, 1);
+
+  const Outcome refused = scanstation("--progress=json info " + path(dir / "missing.off"));
+  EXPECT_EQ(refused.exit_code, 1);
+  const std::vector<nlohmann::json> e = events(refused.err);
+  ASSERT_FALSE(e.empty());
+  EXPECT_EQ(e.back()["event"], "error");
+  EXPECT_EQ(e.back()["exit"], 1);
+  EXPECT_THAT(e.back()["message"].get<std::string>(), testing::HasSubstr("missing.off"));
+
+  // Without it, the same warning is text.
+  const Outcome text = scanstation("graph " + path(dir / "flat.xyz") + " --type delaunay -o " + path(dir / "flat2.ply"));
+  EXPECT_THAT(text.err, testing::HasSubstr("[scanstation] warning: all 5 points lie in one plane"));
+}
+
 TEST(Cli, PolygonConversionToSvgAndBack) {
   ScratchFolder dir;
   {
