@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string_view>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -65,6 +66,23 @@ CLI::Validator integer_in(long long low, long long high, bool odd) {
         return std::string();
       },
       fmt::format("in [{} - {}]", low, high));
+}
+
+CLI::Validator decimal_digits() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        const std::size_t sign = !value.empty() && (value[0] == '+' || value[0] == '-') ? 1 : 0;
+        const std::string_view digits = std::string_view(value).substr(sign);
+        if (digits.size() > 1 && digits[0] == '0' && std::string_view("xXbBoO").find(digits[1]) != std::string_view::npos)
+          return fmt::format("expected a whole number in decimal digits, got '{}'", value);
+        // Anything else that is not digits is left to the option's own check.
+        if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+          return std::string();
+        const std::size_t first = std::min(value.find_first_not_of('0', sign), value.size() - 1);
+        value = value.substr(0, sign) + value.substr(first);
+        return std::string();
+      },
+      "");
 }
 
 void add_density_option(CLI::App& app, std::optional<int>& density) {

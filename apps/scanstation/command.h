@@ -75,6 +75,12 @@ CLI::Validator non_negative_integer();
 /// was refused later without naming the option.
 CLI::Validator integer_in(long long low, long long high, bool odd = false);
 
+/// A transform for whole-number options: leading zeros are dropped ("010"
+/// is ten, not CLI11's octal eight) and a radix prefix ("0x10", "0b1",
+/// "0o7") is refused with the value named; other text is left to the
+/// option's own check.
+CLI::Validator decimal_digits();
+
 /// For floating-point options: a finite number in [low, high]. CLI::Range
 /// alone lets "nan" through (every comparison with it is false).
 CLI::Validator finite_range(double low, double high);

@@ -76,6 +76,14 @@ int run(int argc, char** argv) {
   commands.push_back(app::make_replay_command(cli));
   commands.push_back(app::make_calibrate_command(cli));
 
+  // CLI11 reads whole numbers with C's base prefixes: "0x10" was 16 and
+  // "010" was 8 (`demo --steps 010` scanned 8 steps). Every whole-number
+  // option takes decimal digits only, a leading zero meaning nothing.
+  for (CLI::App* sub : cli.get_subcommands([](CLI::App*) { return true; }))
+    for (CLI::Option* option : sub->get_options()) {
+      const std::string type = option->get_type_name();
+      if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->transform(app::decimal_digits());
+    }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

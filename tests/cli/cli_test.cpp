@@ -406,6 +406,15 @@ TEST(Cli, ReconstructOptionsMethodInteriorKeepAugment) {
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "e.off") + " --continue 18446744073709551616");
   EXPECT_EQ(r.exit_code, 1);  // 2^64 was clamped to 2^64 − 1 without a word
   EXPECT_THAT(r.err, testing::HasSubstr("got 18446744073709551616"));
+  // Whole numbers are decimal: CLI11 read "010" as octal eight and "0x10"
+  // as sixteen (`demo --steps 010` scanned 8 steps).
+  r = scanstation("reconstruct " + cow + " -o " + path(dir / "h.off") + " --continue 0x10");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--continue: expected a whole number in decimal digits, got '0x10'"));
+  r = scanstation("capture --backend sim -n 010 -o " + path(dir / "frames"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("captured 10 frames"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "frames"), std::filesystem::directory_iterator()), 10);
   r = scanstation("reconstruct " + cow + " -o " + path(dir / "g.off") + " --guide off --report " + path(dir / "g.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "g.json"))["result"]["guide_faces"], 0);
