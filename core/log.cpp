@@ -18,10 +18,10 @@ std::atomic<LogFormat> g_format{LogFormat::text};
 class JsonLineFormatter final : public spdlog::formatter {
  public:
   void format(const spdlog::details::log_msg& msg, spdlog::memory_buf_t& dest) override {
+    const auto level = spdlog::level::to_string_view(msg.level);
     const nlohmann::json line = {
         {"event", "log"},
-        {"level", std::string(spdlog::level::to_string_view(msg.level).data(),
-                              spdlog::level::to_string_view(msg.level).size())},
+        {"level", std::string(level.data(), level.size())},
         {"room", std::string(msg.logger_name.data(), msg.logger_name.size())},
         {"message", std::string(msg.payload.data(), msg.payload.size())},
     };

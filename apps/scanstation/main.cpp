@@ -44,6 +44,18 @@ void refuse_report_over_a_file_of_the_command(app::Command& command) {
   }
 }
 
+// The last word on stderr: text, or under --progress=json an
+// {"event":"error"} line with the exit code.
+int fail(const char* kind, const char* what, int code) {
+  if (log_format() == LogFormat::json_lines) {
+    const nlohmann::json line = {{"event", "error"}, {"kind", kind}, {"message", what}, {"exit", code}};
+    std::fprintf(stderr, "%s\n", line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  } else {
+    std::fprintf(stderr, "scanstation: %s: %s\n", kind, what);
+  }
+  return code;
+}
+
 int run(int argc, char** argv) {
   CLI::App cli{"scanstation: turntable laser and stereo scanning, closed object boundaries from scattered points",
                "scanstation"};
@@ -119,22 +131,6 @@ int run(int argc, char** argv) {
     if (context.exit_code != 0) return context.exit_code;
   }
   return 0;
-}
-
-}  // namespace
-
-namespace {
-
-// The last word on stderr: text, or under --progress=json an
-// {"event":"error"} line with the exit code.
-int fail(const char* kind, const char* what, int code) {
-  if (scanstation::log_format() == scanstation::LogFormat::json_lines) {
-    const nlohmann::json line = {{"event", "error"}, {"kind", kind}, {"message", what}, {"exit", code}};
-    std::fprintf(stderr, "%s\n", line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
-  } else {
-    std::fprintf(stderr, "scanstation: %s: %s\n", kind, what);
-  }
-  return code;
 }
 
 }  // namespace

@@ -39,6 +39,17 @@ void expect_boundary_through_all(const IncrementalConstriction& inc, const Batch
   expect_valid_surface(r, what);
 }
 
+// n points uniformly at random on the unit sphere, in random order.
+Eigen::MatrixX3d points_on_unit_sphere(Eigen::Index n, std::uint64_t seed) {
+  sim::Random random(seed);
+  Eigen::MatrixX3d P(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d d(random.normal(), random.normal(), random.normal());
+    P.row(i) = d.normalized().transpose();
+  }
+  return P;
+}
+
 // A reconstruction's faces in the numbering of the mesh its points came from
 // (point i of the reconstruction was row order[i]).
 Eigen::MatrixX3i in_mesh_numbering(const SurfaceReconstruction& r, const std::vector<Eigen::Index>& order) {
@@ -111,12 +122,7 @@ TEST(IncrementalConstriction, RandomOrderOnRandomCloudsStaysLocal) {
 // whole triangulation (about 6.5 cells per point on a closed surface; rings
 // around every new point would touch about 4 per point, i.e. nearly all).
 TEST(IncrementalConstriction, RandomOrderBatchTouchesALocalRegion) {
-  sim::Random random(7);
-  Eigen::MatrixX3d P(10000, 3);
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    const Eigen::Vector3d d(random.normal(), random.normal(), random.normal());
-    P.row(i) = d.normalized().transpose();
-  }
+  const Eigen::MatrixX3d P = points_on_unit_sphere(10000, 7);
   const std::vector<Eigen::Index> order = sim::shuffled_order(P.rows(), 5);
   IncrementalConstriction inc;
   BatchStats s;
@@ -170,12 +176,7 @@ TEST(IncrementalConstriction, JoinedPointsOnALatticeKeepAValidBoundary) {
 // clamped to the grid's edge) and the points after it still give a valid
 // boundary through every point.
 TEST(IncrementalConstriction, AFarPointMidScanKeepsAValidBoundary) {
-  sim::Random random(11);
-  Eigen::MatrixX3d P(3001, 3);
-  for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    const Eigen::Vector3d d(random.normal(), random.normal(), random.normal());
-    P.row(i) = d.normalized().transpose();
-  }
+  Eigen::MatrixX3d P = points_on_unit_sphere(3001, 11);
   P.row(1500) << 1e6, 3.0, -2.0;
   IncrementalConstriction inc;
   for (Eigen::Index from = 0; from < P.rows(); from += 300) {
