@@ -42,7 +42,19 @@ struct CellInfo {
   unsigned filled = 0;  // the batch that filled the cell (made it, kept, to be re-decided); 0: none
   char kept = 1;
 };
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;  // the point's index
+// A vertex holds its point's index (info) and the last conflict zone that
+// listed it (State::zone_points): marked in the vertex, which the
+// insertion has at hand, not in an array by index, which missed the cache.
+template <typename Base = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>>
+struct ZoneVertex : Base {
+  template <typename Tds>
+  struct Rebind_TDS {
+    using Other = ZoneVertex<typename Base::template Rebind_TDS<Tds>::Other>;
+  };
+  using Base::Base;
+  unsigned zone = 0;
+};
+using Vb = ZoneVertex<>;
 using Cb = CGAL::Triangulation_cell_base_with_info_3<CellInfo, Kernel>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
 using Cell = Delaunay::Cell_handle;
@@ -148,12 +160,15 @@ struct IncrementalConstriction::State {
   std::vector<std::pair<int, int>> f_change;    // (point, change of f) when the point joins
   int tip = -1;                                 // joinable_by_one_cell's facet, else −1
   // Per batch: the finite points of each new point's conflict zone (all
-  // but the infinite vertex), zone_points[zone_from[k], zone_from[k + 1])
-  // for the k-th point inserted; which new points were joined (in the
-  // order of `fresh`).
-  std::vector<Vertex> zone_points;
+  // but the infinite vertex), each once, zone_points[zone_from[k],
+  // zone_from[k + 1]) for the k-th point inserted; which new points were
+  // joined (in the order of `fresh`). Listed by number, read off the
+  // vertices while the insertion has them at hand: later passes over the
+  // handles missed the cache at every vertex (at 1M points, random order).
+  std::vector<int> zone_points;
   std::vector<std::size_t> zone_from;
   std::vector<Vertex> zone_vertex;  // the k-th point inserted
+  unsigned zone_stamp = 0;          // the zone being listed (ZoneVertex::zone)
   std::vector<char> fresh_joined;
 
   // The finite cells around each point, found by a walk across the faces at
@@ -234,8 +249,8 @@ struct IncrementalConstriction::State {
   // new point's conflict zone (zone_points).
   void carry_stars_over() {
     std::vector<int> changed;
-    for (const Vertex v : zone_points) {
-      const auto id = static_cast<std::size_t>(v->info());
+    for (const int point : zone_points) {
+      const auto id = static_cast<std::size_t>(point);
       if (star_slot[id] >= 0 && !star_changed[id]) {
         star_changed[id] = 1;
         changed.push_back(static_cast<int>(id));
@@ -397,15 +412,21 @@ struct IncrementalConstriction::State {
       return a;
     }
   };
-  int fill_number(FillParts& p, Vertex v) {
-    int& id = fill_vertex[static_cast<std::size_t>(v->info())];
-    if (id < 0) {
-      id = static_cast<int>(p.vertices.size());
-      p.vertices.push_back(v);
-      p.ids.push_back(v->info());
-      p.parent.push_back(id);
+  // A point's number in p (p.vertices are left out when given by number).
+  int fill_number(FillParts& p, int point) {
+    int& n = fill_vertex[static_cast<std::size_t>(point)];
+    if (n < 0) {
+      n = static_cast<int>(p.ids.size());
+      p.ids.push_back(point);
+      p.parent.push_back(n);
     }
-    return id;
+    return n;
+  }
+  int fill_number(FillParts& p, Vertex v) {
+    const std::size_t before = p.ids.size();
+    const int n = fill_number(p, v->info());
+    if (p.ids.size() != before) p.vertices.push_back(v);
+    return n;
   }
   void add_cells(FillParts& p, const std::vector<Cell>& region) {
     for (; p.cells < region.size(); ++p.cells) {
@@ -891,13 +912,20 @@ struct IncrementalConstriction::State {
   // (after joinable() said so), else with its new cells filled.
   Vertex insert_in_zone(const Kernel::Point_3& p, int id, bool joined) {
     hole_facets.clear();
+    if (++zone_stamp == 0) {  // wrapped: no point may look listed
+      for (const Vertex v : dt.finite_vertex_handles()) v->zone = 0;
+      zone_stamp = 1;
+    }
     for (const auto& [c, i] : hole) {
       hole_facets.push_back({c->neighbor(i), dt.mirror_index(c, i), inside(c)});
-      // Each point is on about five facets, and listed each time: removing
-      // the repeats (by sorting, or by a scan of the dozen listed) cost
-      // more than the later passes over the repeats.
+      // Each point is on about five facets: listed at the first.
       for (int k = 1; k < 4; ++k)
-        if (const Vertex v = c->vertex((i + k) & 3); !dt.is_infinite(v)) zone_points.push_back(v);
+        if (const Vertex v = c->vertex((i + k) & 3); !dt.is_infinite(v)) {
+          if (v->zone != zone_stamp) {
+            v->zone = zone_stamp;
+            zone_points.push_back(v->info());
+          }
+        }
     }
     zone_from.push_back(zone_points.size());
     // As CGAL's own insert does (the same triangulation either way): a small
@@ -999,14 +1027,18 @@ struct IncrementalConstriction::State {
     std::copy(f.begin(), f.end(), faces_at.begin() + static_cast<std::ptrdiff_t>(base));
     std::vector<Vertex> fresh;
     fresh_joined.clear();
+    std::vector<int> renumbered(created.size());  // by the number given at insertion
     for (const auto& [row, v, joined_now] : created) {
       fresh_joined.push_back(joined_now);
+      renumbered[static_cast<std::size_t>(v->info()) - base] = static_cast<int>(points.size());
       v->info() = static_cast<int>(points.size());
       points.push_back(batch_points.row(row).transpose());
       viewpoint_of.push_back(batch_viewpoint);
       source.push_back(received + row);
       fresh.push_back(v);
     }
+    for (int& id : zone_points)
+      if (static_cast<std::size_t>(id) >= base) id = renumbered[static_cast<std::size_t>(id) - base];
     faces_at.resize(points.size(), 0);
     local_vertex.resize(points.size(), -1);
     f_now.resize(points.size(), -1);
@@ -1033,12 +1065,12 @@ struct IncrementalConstriction::State {
   void new_cells(const std::vector<Vertex>& fresh, std::vector<Cell>& front, std::vector<Cell>& rest) {
     FillParts zones;
     for (std::size_t k = 0; k < zone_vertex.size(); ++k) {
-      const int a = zones.find(fill_number(zones, zone_vertex[k]));
+      const int a = zones.find(fill_number(zones, zone_vertex[k]->info()));
       for (std::size_t j = zone_from[k]; j < zone_from[k + 1]; ++j)
         zones.parent[static_cast<std::size_t>(zones.find(fill_number(zones, zone_points[j])))] = a;
     }
     const auto part = [&](Vertex v) { return static_cast<std::size_t>(zones.find(fill_vertex[static_cast<std::size_t>(v->info())])); };
-    std::vector<std::size_t> fresh_in(zones.vertices.size(), 0);
+    std::vector<std::size_t> fresh_in(zones.ids.size(), 0);
     for (const Vertex v : fresh) ++fresh_in[part(v)];
     for (std::size_t k = 0; k < fresh.size(); ++k) {
       const bool in_front = 10 * fresh_in[part(fresh[k])] >= fresh.size();
