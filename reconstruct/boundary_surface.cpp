@@ -205,6 +205,15 @@ struct PlaneFilter {
     const int all = static_cast<int>(q.size());
     return all == 0 ? 0 : above == all ? 1 : below == all ? -1 : 0;
   }
+  // +1 or −1 when the box lies clearly on that side: then so do the
+  // vertices of any triangle in it. The box's reach along n is Σ|n_i|·h_i;
+  // the margin is that of side() for the box's farthest point from a.
+  int side(const Eigen::AlignedBox3d& box) const {
+    const Eigen::Vector3d c = box.center(), h = 0.5 * box.sizes();
+    const double s = n.dot(c - a), reach = n.cwiseAbs().dot(h);
+    const double margin = 2.0 * scale * ((c - a).norm() + h.norm());
+    return s - reach > margin ? 1 : s + reach < -margin ? -1 : 0;
+  }
   Eigen::Vector3d a, n;
   double scale;
 };
@@ -220,6 +229,7 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
     region.extend(boxes.back());
     planes.emplace_back(point(t[0]), point(t[1]), point(t[2]));
   }
+  std::vector<char> near(fresh.size());  // per fresh triangle: its box may meet the face's
   // The corners of x that are no corners of y.
   std::array<Eigen::Vector3d, 3> corners;
   const auto unshared = [&](const Triangle& x, const Triangle& y) {
@@ -229,10 +239,18 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
     return std::span<const Eigen::Vector3d>(corners.data(), n);
   };
   return !faces_grid_.visit(region, [&](int g, const Eigen::AlignedBox3d& other_box) {
-    if (!alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return true;
+    // The box as filed first: near a long triangle most faces lie clearly
+    // on one side of its plane, told without reading the face (on a
+    // chalice of 100k points, 64% of the pairs of boxes that met).
+    bool any = false;
+    for (std::size_t k = 0; k < fresh.size(); ++k) {
+      near[k] = boxes[k].intersects(other_box) && planes[k].side(other_box) == 0;
+      any = any || near[k];
+    }
+    if (!any || !alive(g) || std::find(except.begin(), except.end(), g) != except.end()) return true;
     const Triangle& other = face(g);
     for (std::size_t k = 0; k < fresh.size(); ++k) {
-      if (!boxes[k].intersects(other_box)) continue;
+      if (!near[k]) continue;
       // A face whose vertices other than those it shares with t lie clearly
       // on one side of t's plane meets t only in the shared ones: the long
       // triangles of webs have boxes that meet hundreds of faces far from
