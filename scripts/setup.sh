@@ -9,7 +9,7 @@ packages=(
   cmake g++ ninja-build pkg-config
   # libraries
   libcgal-dev libeigen3-dev libopencv-dev libgpiod-dev libusb-1.0-0-dev linux-libc-dev
-  libtbb-dev libembree-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libtomlplusplus-dev
+  libtbb-dev libembree-dev libcli11-dev libspdlog-dev nlohmann-json3-dev libtomlplusplus-dev libpugixml-dev
   libopencv-contrib-dev  # ximgproc: WLS disparity filtering for stereo
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev

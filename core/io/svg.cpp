@@ -7,9 +7,12 @@
 #include "core/log.h"
 #include "core/svg_canvas.h"
 
+#include <pugixml.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace scanstation::io {
@@ -22,26 +25,8 @@ struct Attribute {
 };
 
 std::size_t line_at(std::string_view text, std::size_t offset) {
+  offset = std::min(offset, text.size());
   return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
-}
-
-// The value of attribute `name` in the tag starting at `tag`, if present.
-std::optional<Attribute> attribute(std::string_view text, std::size_t tag, std::string_view name) {
-  const std::size_t end = text.find('>', tag);
-  const std::string_view element = text.substr(tag, end == std::string_view::npos ? text.size() - tag : end - tag);
-  for (std::size_t at = element.find(name); at != std::string_view::npos; at = element.find(name, at + 1)) {
-    const bool starts_word = at > 0 && std::isspace(static_cast<unsigned char>(element[at - 1]));
-    std::size_t i = at + name.size();
-    while (i < element.size() && std::isspace(static_cast<unsigned char>(element[i]))) ++i;
-    if (!starts_word || i >= element.size() || element[i] != '=') continue;
-    ++i;
-    while (i < element.size() && std::isspace(static_cast<unsigned char>(element[i]))) ++i;
-    if (i >= element.size() || (element[i] != '"' && element[i] != '\'')) continue;
-    const std::size_t close = element.find(element[i], i + 1);
-    if (close == std::string_view::npos) break;
-    return Attribute{element.substr(i + 1, close - i - 1), tag + i + 1};
-  }
-  return std::nullopt;
 }
 
 // Reads SVG path data / point lists: numbers and single-letter commands.
@@ -140,41 +125,50 @@ std::vector<Eigen::Vector2d> read_path(PathScanner& scan) {
   return points;
 }
 
-// Tags of `name` ("<g", "<polygon") that start at `at`: followed by a blank,
-// '/' or '>' (so "<g" is not "<glyph").
-bool tag_at(std::string_view text, std::size_t at, std::string_view name) {
-  if (text.compare(at, name.size(), name) != 0 || at + name.size() >= text.size()) return false;
-  const char next = text[at + name.size()];
-  return std::isspace(static_cast<unsigned char>(next)) || next == '/' || next == '>';
+// An element's name without a namespace prefix ("svg:polygon" is a polygon).
+std::string_view local_name(const pugi::xml_node& node) {
+  const std::string_view name = node.name();
+  const std::size_t colon = name.find(':');
+  return colon == std::string_view::npos ? name : name.substr(colon + 1);
+}
+
+bool is_shape(const pugi::xml_node& node) {
+  const std::string_view name = local_name(node);
+  return name == "polygon" || name == "polyline" || name == "path";
+}
+
+// The document's shape elements (polygon, polyline, path), in document
+// order; comments and other markup are the parser's, not shapes.
+std::vector<pugi::xml_node> shapes_of(pugi::xml_node root) {
+  struct Collect : pugi::xml_tree_walker {
+    std::vector<pugi::xml_node> found;
+    bool for_each(pugi::xml_node& node) override {
+      if (node.type() == pugi::node_element && is_shape(node)) found.push_back(node);
+      return true;
+    }
+  } collect;
+  root.traverse(collect);
+  return collect.found;
 }
 
 // What the reader leaves out is said, not dropped silently: further shape
-// elements, and transforms (coordinates are read as written, in the
-// element's own user space). The view group SvgCanvas writes (y flip and
-// scale, marked data-scanstation) is display only.
-void warn_unread_parts(std::string_view text, std::size_t element, const std::filesystem::path& file) {
+// elements, and transforms on the shape or around it (coordinates are read
+// as written, in the element's own user space). The view group SvgCanvas
+// writes (y flip and scale, marked data-scanstation) is display only.
+void warn_unread_parts(const std::vector<pugi::xml_node>& shapes, const std::function<std::size_t(const pugi::xml_node&)>& line,
+                       const std::filesystem::path& file) {
   const auto log = room_logger("core");
-  std::vector<std::size_t> shapes;
-  for (std::size_t at = text.find('<'); at != std::string_view::npos; at = text.find('<', at + 1))
-    if (tag_at(text, at, "<polygon") || tag_at(text, at, "<polyline") || tag_at(text, at, "<path")) shapes.push_back(at);
+  const pugi::xml_node shape = shapes.front();
   if (shapes.size() > 1)
     log->warn("{}: holds {} polygon, polyline or path elements; only the first (line {}) is read", file.string(),
-              shapes.size(), line_at(text, element));
-  std::vector<std::size_t> open_groups;
-  for (std::size_t at = text.find('<'); at < element; at = text.find('<', at + 1)) {
-    if (tag_at(text, at, "<g")) {
-      const std::size_t end = text.find('>', at);
-      if (end == std::string_view::npos || text[end - 1] != '/') open_groups.push_back(at);
-    } else if (tag_at(text, at, "</g") && !open_groups.empty()) {
-      open_groups.pop_back();
-    }
-  }
-  open_groups.push_back(element);
-  for (const std::size_t tag : open_groups) {
-    const auto transform = attribute(text, tag, "transform");
-    if (!transform || attribute(text, tag, "data-scanstation")) continue;
+              shapes.size(), line(shape));
+  std::vector<pugi::xml_node> enclosing;  // the shape and the elements around it, outermost first
+  for (pugi::xml_node n = shape; n.type() == pugi::node_element; n = n.parent()) enclosing.insert(enclosing.begin(), n);
+  for (const pugi::xml_node& n : enclosing) {
+    const pugi::xml_attribute transform = n.attribute("transform");
+    if (!transform || n.attribute("data-scanstation")) continue;
     log->warn("{}:{}: transform=\"{}\" is not applied: the polygon's coordinates are read as written", file.string(),
-              line_at(text, tag), transform->value);
+              line(n), transform.value());
   }
 }
 
@@ -183,33 +177,44 @@ void warn_unread_parts(std::string_view text, std::size_t element, const std::fi
 Polygon2 read_svg(std::string_view text, const std::filesystem::path& file) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
     throw FormatError(FileLocation::whole(file), "file is empty: expected an SVG document");
-  if (text.find("<svg") == std::string_view::npos)
+  if (text.find("<svg") == std::string_view::npos && text.find(":svg") == std::string_view::npos)
     throw FormatError(FileLocation::at_line(file, 1), "expected an SVG document (no <svg> element found)");
-  struct Candidate {
-    const char* tag;
-    const char* attr;
+  // Parsed in place in a copy, so that every node and attribute value
+  // points into it: their offsets there are those in the file (pugixml
+  // unescapes within a value, never moving its start).
+  std::string buffer(text);
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed = doc.load_buffer_inplace(buffer.data(), buffer.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!parsed)
+    throw FormatError(FileLocation::at_line(file, line_at(text, static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0)))),
+                      std::string("expected well-formed XML (an SVG document): ") + parsed.description());
+  const pugi::xml_node root = doc.document_element();
+  const auto line = [&](const pugi::xml_node& node) {
+    return line_at(text, static_cast<std::size_t>(std::max<std::ptrdiff_t>(node.offset_debug(), 0)));
   };
-  std::size_t best = std::string_view::npos;
-  Candidate chosen{};
-  for (const Candidate c : {Candidate{"<polygon", "points"}, Candidate{"<polyline", "points"}, Candidate{"<path", "d"}}) {
-    const std::size_t at = text.find(c.tag);
-    if (at < best) best = at, chosen = c;
-  }
-  if (best == std::string_view::npos)
+  if (local_name(root) != "svg")
+    throw FormatError(FileLocation::at_line(file, line(root)),
+                      "expected an SVG document, found <" + std::string(root.name()) + "> as the root element");
+  const std::vector<pugi::xml_node> shapes = shapes_of(root);
+  if (shapes.empty())
     throw FormatError(FileLocation::whole(file), "expected a <polygon>, <polyline> or <path> element, found none");
-  warn_unread_parts(text, best, file);
-  const auto attr = attribute(text, best, chosen.attr);
-  if (!attr)
-    throw FormatError(FileLocation::at_line(file, line_at(text, best)),
-                      std::string("expected a '") + chosen.attr + "' attribute on " + chosen.tag + ">");
-  PathScanner scan(text, *attr, file);
-  std::vector<Eigen::Vector2d> points = chosen.attr == std::string_view("d") ? read_path(scan) : read_point_list(scan);
+  warn_unread_parts(shapes, line, file);
+  const pugi::xml_node shape = shapes.front();
+  const bool path = local_name(shape) == "path";
+  const char* attribute_name = path ? "d" : "points";
+  const pugi::xml_attribute value = shape.attribute(attribute_name);
+  if (!value)
+    throw FormatError(FileLocation::at_line(file, line(shape)),
+                      std::string("expected a '") + attribute_name + "' attribute on <" + shape.name() + ">");
+  const Attribute attr{value.value(), static_cast<std::size_t>(value.value() - buffer.data())};
+  PathScanner scan(text, attr, file);
+  std::vector<Eigen::Vector2d> points = path ? read_path(scan) : read_point_list(scan);
   // An explicitly repeated first vertex closes the polygon; it is not a vertex
   // (as drop_closing_repeat: never below 3, so that what write_svg wrote of
   // a degenerate polygon, three copies of one point, reads back the same).
   if (points.size() > 3 && points.front() == points.back()) points.pop_back();
   if (points.size() < 3)
-    throw FormatError(FileLocation::at_line(file, line_at(text, attr->offset)),
+    throw FormatError(FileLocation::at_line(file, line_at(text, attr.offset)),
                       "expected a polygon of at least 3 vertices, found " + std::to_string(points.size()));
   Polygon2 polygon;
   polygon.vertices.resize(static_cast<Eigen::Index>(points.size()), 2);

@@ -10,7 +10,9 @@
 namespace scanstation::io {
 
 /// Reads the first <polygon points="..."> (or <polyline>, or <path d="...">
-/// with M/L/H/V/Z commands, absolute or relative) of an SVG file. Points are
+/// with M/L/H/V/Z commands, absolute or relative) of an SVG file, in
+/// document order; the file is parsed as XML (pugixml), and one that is not
+/// well-formed is refused at the line of the fault. Points are
 /// read as written, so a file written by write_svg reads back exactly;
 /// transforms are not applied, and other shape elements are not read: both
 /// are named in a warning (the "core" logger). Throws FormatError naming the

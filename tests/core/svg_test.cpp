@@ -115,6 +115,33 @@ TEST(Svg, MalformedInputNamesFileLineAndExpectation) {
   expect_error<FormatError>([] { read_svg("<svg><polygon points='0,0 1,1'/></svg>", "t.svg"); },
                             {"t.svg:1", "at least 3"});
   expect_error<FormatError>([] { read_svg("<svg><polygon fill='red'/></svg>", "a.svg"); }, {"a.svg:1", "'points'"});
+  // Not well-formed XML is refused at its line, not read up to the break: a
+  // file cut short in its second shape, an end tag without '>'.
+  expect_error<FormatError>([] { read_svg("<svg><polygon points='0,0 1,0 1,1'/>\n<g><polygon points='2,2 3", "cut.svg"); },
+                            {"cut.svg:2", "well-formed XML"});
+  expect_error<FormatError>([] { read_svg("<svg>\n<polygon points='0,0 1,0 1,1'/></svg", "end.svg"); },
+                            {"end.svg:2", "well-formed XML"});
+  expect_error<FormatError>([] { read_svg("<html><svg><polygon points='0,0 1,0 1,1'/></svg></html>", "h.svg"); },
+                            {"h.svg:1", "<html>"});
+  // A number's line within a points list that spans lines.
+  expect_error<FormatError>([] { read_svg("<svg>\n<polygon\n points='0,0 1,0\n 1,1 0,x'/></svg>", "l.svg"); },
+                            {"l.svg:4", "y of point 3"});
+}
+
+// The document is XML: commented-out shapes are no shapes, prefixed names
+// and entities are understood, a declaration and a DOCTYPE with an internal
+// subset (as some editors write) are read past.
+TEST(Svg, ReadsTheDocumentAsXml) {
+  const Polygon2 p = read_svg(
+      "<?xml version='1.0'?>\n<!DOCTYPE svg [ <!ENTITY ns 'http://www.w3.org/2000/svg'> ]>\n"
+      "<svg xmlns='http://www.w3.org/2000/svg'>\n<!-- <polygon points='9,9 8,9 8,8'/> -->\n"
+      "<polygon points='0,0&#x20;4,0 4,3'/></svg>",
+      "x.svg");
+  ASSERT_EQ(p.size(), 3);
+  EXPECT_EQ(p.vertices.row(1), Eigen::RowVector2d(4, 0));
+  const Polygon2 q = read_svg("<svg:svg xmlns:svg='http://www.w3.org/2000/svg'><svg:path d='M0 0 H2 V2 Z'/></svg:svg>", "y.svg");
+  EXPECT_EQ(q.size(), 3);
+  EXPECT_EQ(warnings_reading("<svg><!-- <polygon points='9,9 8,9 8,8'/> --><polygon points='0,0 1,0 1,1'/></svg>"), "");
 }
 
 }  // namespace
