@@ -1,6 +1,7 @@
 // scanstation convert IN OUT: any supported format to any other.
 #include "command.h"
 #include "core/errors.h"
+#include "core/io/file_format.h"
 #include "core/io/mesh_io.h"
 
 #include <cstdio>
@@ -53,6 +54,11 @@ class ConvertCommand final : public Command {
   void run(CommandContext& context) override {
     const io::FileFormat in = io::resolve_format(input_, from_);
     const io::FileFormat out = io::resolve_format(output_, to_);
+    // --to names the format where the extension does not; a file named for
+    // another format would not read back as what it is called.
+    if (const auto named = io::format_from_extension(output_); to_ && named && *named != out)
+      throw InvalidInput("--to " + *to_ + " contradicts the extension of " + output_.string() + " (" +
+                         io::format_name(*named) + "): name the file for the format, or leave --to out");
     io::check_output_file(output_, context.overwrite);
     io::WriteOptions write{to_, encoding(), context.overwrite};
     io::ReadOptions read{from_, context.progress.stage("read")};

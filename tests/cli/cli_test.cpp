@@ -236,6 +236,14 @@ TEST(Cli, PolygonConversionToSvgAndBack) {
   EXPECT_THAT(r.out, testing::HasSubstr("simple:"));
   ASSERT_EQ(scanstation("convert " + path(dir / "p.svg") + " " + path(dir / "q.xy")).exit_code, 0);
   EXPECT_EQ(slurp(dir / "q.xy"), slurp(dir / "p.xy"));
+  // --to names a format the extension does not; against the extension it is
+  // refused (an SVG named .xy would not read back), nothing written.
+  const Outcome against = scanstation("convert " + path(dir / "p.xy") + " " + path(dir / "r.xy") + " --to svg");
+  EXPECT_EQ(against.exit_code, 1);
+  EXPECT_THAT(against.err, testing::HasSubstr("--to svg contradicts the extension of"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.xy"));
+  ASSERT_EQ(scanstation("convert " + path(dir / "p.xy") + " " + path(dir / "p.outline") + " --to svg").exit_code, 0);
+  EXPECT_THAT(slurp(dir / "p.outline"), testing::HasSubstr("<polygon"));
 }
 
 TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
@@ -478,7 +486,7 @@ TEST(Cli, GraphsIn2DAnd3D) {
   // Extensions in upper case: .PLY was taken, .JSON refused.
   r = scanstation("graph " + square + " -o " + path(dir / "G.JSON") + " --type emst");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NO_THROW((void)nlohmann::json::parse(slurp(dir / "G.JSON")));
+  EXPECT_TRUE(nlohmann::json::accept(slurp(dir / "G.JSON")));
   r = scanstation("graph " + square + " -o " + path(dir / "x.svg") + " --type alpha --param nan");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--param: expected a number"));
