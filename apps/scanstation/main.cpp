@@ -14,6 +14,7 @@
 #include <exception>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 namespace {
 
@@ -54,6 +55,16 @@ int fail(const char* kind, const char* what, int code) {
     std::fprintf(stderr, "scanstation: %s: %s\n", kind, what);
   }
   return code;
+}
+
+// Whether the words ask for --progress=json (or --progress json).
+bool asks_for_json_progress(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view word = argv[i];
+    if (word == "--") break;
+    if (word == "--progress=json" || (word == "--progress" && i + 1 < argc && std::string_view(argv[i + 1]) == "json")) return true;
+  }
+  return false;
 }
 
 int run(int argc, char** argv) {
@@ -99,6 +110,13 @@ int run(int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A usage error under --progress=json is a JSON line too (the option is
+    // looked for in the words, as the parse stopped early); help and the
+    // version are text asked for.
+    if (e.get_exit_code() != 0 && asks_for_json_progress(argc, argv)) {
+      set_log_format(LogFormat::json_lines);
+      return fail("usage", e.what(), 1);
+    }
     const int code = cli.exit(e);  // prints help/version or the usage error
     return code == 0 ? 0 : 1;
   }

@@ -217,6 +217,16 @@ TEST(Cli, JsonProgressCarriesWarningsAndErrorsAsJsonLines) {
   EXPECT_EQ(e.back()["event"], "error");
   EXPECT_EQ(e.back()["exit"], 1);
   EXPECT_THAT(e.back()["message"].get<std::string>(), testing::HasSubstr("missing.off"));
+  // A usage error (the command line itself) too, with either spelling.
+  for (const std::string option : {"--progress=json", "--progress json"}) {
+    const Outcome usage = scanstation(option + " reconstruct --gamma 1,2,3");
+    EXPECT_EQ(usage.exit_code, 1);
+    const std::vector<nlohmann::json> u = events(usage.err);
+    ASSERT_EQ(u.size(), 1u) << usage.err;
+    EXPECT_EQ(u[0]["kind"], "usage");
+    EXPECT_EQ(u[0]["exit"], 1);
+  }
+  EXPECT_THAT(scanstation("reconstruct").err, testing::HasSubstr("Run with --help"));  // text without it
 
   // Without it, the same warning is text.
   const Outcome text = scanstation("graph " + path(dir / "flat.xyz") + " --type delaunay -o " + path(dir / "flat2.ply"));
