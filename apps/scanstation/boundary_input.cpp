@@ -2,8 +2,25 @@
 
 #include "core/errors.h"
 #include "core/io/mesh_io.h"
+#include "core/log.h"
+#include "core/polygon.h"
 
 namespace scanstation::app {
+
+namespace {
+
+// A crossing or overlapping outline (a bow tie, points along one line) is
+// read, but not without a word: the flintstones, inclusion and smoothing
+// of Chapters 7 and 9 are those of a simple polygon's region.
+void warn_unless_simple(const BoundaryInput& input) {
+  if (input.polygon->size() >= 3 && !is_simple(*input.polygon))
+    room_logger("scanstation")
+        ->warn("{}: the polygon is not simple (edges cross, overlap or meet beyond their shared corners): what is "
+               "computed assumes a simple one, so the result has no meaning there",
+               input.path.string());
+}
+
+}  // namespace
 
 BoundaryInput read_boundary(const std::filesystem::path& path, const std::optional<std::string>& format,
                             ProgressCallback progress) {
@@ -11,12 +28,14 @@ BoundaryInput read_boundary(const std::filesystem::path& path, const std::option
   input.path = path;
   if (io::resolve_format(path, format) == io::FileFormat::svg) {
     input.polygon = io::read_polygon(path, {format, progress});
+    warn_unless_simple(input);
     return input;
   }
   TriangleMesh mesh = io::read_mesh(path, {format, progress});
   if (mesh.vertices.dimension == 2 && mesh.face_count() == 0) {
     input.polygon = Polygon2{mesh.vertices.positions.leftCols(2)};
     drop_closing_repeat(*input.polygon);
+    warn_unless_simple(input);
   } else if (mesh.face_count() > 0) {
     input.mesh = std::move(mesh);
   } else {

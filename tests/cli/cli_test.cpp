@@ -577,6 +577,15 @@ TEST(Cli, FlintstoneApproximateInsideIntersect) {
   r = scanstation("inside " + path(dir / "p.xy") + " " + path(dir / "q.xy") + " -o " + path(dir / "l.txt"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(slurp(dir / "l.txt"), "1\n0\n0\n1\n");
+  EXPECT_EQ(r.err.find("not simple"), std::string::npos) << r.err;
+  // A bow tie and points along one line are read, with a warning naming the file.
+  std::ofstream(dir / "bow.xy") << "0 0\n4 0\n0 4\n4 4\n";
+  std::ofstream(dir / "line.xy") << "0 0\n1 0\n2 0\n3 0\n";
+  for (const char* name : {"bow.xy", "line.xy"}) {
+    r = scanstation("inside " + path(dir / name) + " " + path(dir / "q.xy") + " -o " + path(dir / (std::string(name) + ".txt")));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.err, testing::HasSubstr(std::string(name) + ": the polygon is not simple"));
+  }
   // 3D: a real mesh, adaptive approximation with balls, and its own vertices inside.
   const std::string elephant = path(test::cgal_data("meshes/elephant.off"));
   r = scanstation("approximate " + elephant + " --max-error 0.05 -o " + path(dir / "e.ply") + " --balls " +
