@@ -11,8 +11,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 
 namespace scanstation {
 
@@ -114,6 +114,16 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
     if (options.given_normals->rows() != V.rows())
       throw InvalidInput("given normals: " + std::to_string(options.given_normals->rows()) + " rows for " +
                          std::to_string(V.rows()) + " vertices");
+    // A zero or non-finite normal gives no direction: Eigen would keep it,
+    // and the sign condition would then make one up without a word.
+    for (Eigen::Index v = 0; v < V.rows(); ++v) {
+      const double length = options.given_normals->row(v).norm();
+      if (!(length > 0.0) || !std::isfinite(length))
+        throw InvalidInput("given normals: vertex " + std::to_string(v) + "'s normal (" +
+                           std::to_string((*options.given_normals)(v, 0)) + ", " + std::to_string((*options.given_normals)(v, 1)) +
+                           ", " + std::to_string((*options.given_normals)(v, 2)) +
+                           ") has no direction: expected a nonzero finite vector");
+    }
     N = options.given_normals->rowwise().normalized();
   } else if (options.fitted_neighbours > 0) {
     const auto neighbours = std::min<Eigen::Index>(options.fitted_neighbours, V.rows());

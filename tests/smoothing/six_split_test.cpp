@@ -176,6 +176,19 @@ TEST(SurfaceSmoothing, RejectsAPinchedVertexByName) {
   EXPECT_NO_THROW(mesh_edges(ball.faces));
 }
 
+// Given normals need a direction each: a zero or NaN normal is refused by
+// vertex (it was kept as zero and replaced by the sign condition unsaid).
+TEST(SurfaceSmoothing, RejectsGivenNormalsWithoutDirection) {
+  const TriangleMesh ball = test::bumpy_sphere(1, 0.0);
+  SurfaceSmoothingOptions options;
+  options.given_normals = ball.vertices.positions.rowwise().normalized();
+  EXPECT_NO_THROW(smooth_surface(ball, options));
+  options.given_normals->row(5).setZero();
+  test::expect_error<InvalidInput>([&] { smooth_surface(ball, options); }, {"vertex 5", "no direction"});
+  options.given_normals->row(5) << 0.0, std::nan(""), 1.0;
+  test::expect_error<InvalidInput>([&] { smooth_surface(ball, options); }, {"vertex 5", "no direction"});
+}
+
 // How far s, its control points taken back by `back`, lies from the
 // reference smoothing, and how many patch corners are s's mesh's vertices
 // bit for bit (6 per face when every vertex is interpolated).
