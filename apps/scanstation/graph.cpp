@@ -108,6 +108,10 @@ class GraphCommand final : public Command {
 
   void run(CommandContext& context) override {
     if (gamma_.empty() && range_.empty() && !type_) throw InvalidInput("give one of --gamma, --gamma-range or --type");
+    // A parameter the graph does not read would be ignored unsaid.
+    if (param_ && !(type_ && (*type_ == "alpha" || *type_ == "beta-lune" || *type_ == "beta-circle")))
+      throw InvalidInput("--param: " + (type_ ? "--type " + *type_ + " takes" : std::string("--gamma and --gamma-range take")) +
+                         " no parameter; only --type alpha, beta-lune and beta-circle do");
     io::check_output_file(output_, context.overwrite);
     const PointCloud cloud = io::read_points(input_, {format_, context.progress.stage("read")});
     context.progress.finish();

@@ -493,6 +493,9 @@ TEST(Cli, GraphsIn2DAnd3D) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--param: expected b in [-1, 1]"));
   EXPECT_THAT(r.err, testing::HasSubstr("got 1.5"));
+  r = scanstation("graph " + square + " -o " + path(dir / "p.svg") + " --type emst --param 0.5");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--param: --type emst takes no parameter"));
   // Extensions in upper case: .PLY was taken, .JSON refused.
   r = scanstation("graph " + square + " -o " + path(dir / "G.JSON") + " --type emst");
   ASSERT_EQ(r.exit_code, 0) << r.err;
