@@ -33,6 +33,15 @@ bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::
   return CGAL::collinear(cgal(a), cgal(b), cgal(c));
 }
 
+bool all_collinear(const Eigen::MatrixX2d& V) {
+  const auto p = [&](Eigen::Index i) { return cgal(Eigen::Vector2d(V.row(i).transpose())); };
+  Eigen::Index b = 1;
+  while (b < V.rows() && V.row(b) == V.row(0)) ++b;
+  for (Eigen::Index c = b + 1; c < V.rows(); ++c)
+    if (!CGAL::collinear(p(0), p(b), p(c))) return false;
+  return true;
+}
+
 bool all_coplanar(const Eigen::MatrixX3d& V) {
   const auto p = [&](Eigen::Index i) { return cgal(Eigen::Vector3d(V.row(i).transpose())); };
   Eigen::Index b = 1;

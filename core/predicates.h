@@ -34,6 +34,12 @@ int side_of_oriented_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
 /// decided exactly.
 bool collinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+/// Whether every row of V lies on one line (fewer than three distinct
+/// points included), decided exactly, in one pass. CGAL's 2D triangulation
+/// of collinear points locates each insertion by a walk along the line:
+/// quadratic time (20k points took seconds), so callers ask this first.
+bool all_collinear(const Eigen::MatrixX2d& V);
+
 /// Whether every row of V lies in one plane (fewer than four points, or all
 /// on one line, included), decided exactly.
 bool all_coplanar(const Eigen::MatrixX3d& V);

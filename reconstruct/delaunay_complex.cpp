@@ -1,6 +1,7 @@
 #include "reconstruct/delaunay_complex.h"
 
 #include "core/errors.h"
+#include "core/predicates.h"
 #include "reconstruct/cell_blocks.h"
 #include "reconstruct/spatial_order.h"
 
@@ -12,6 +13,7 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -126,6 +128,15 @@ void number_distinct(Delaunay2& dt, Repeats2& repeats, Eigen::Index rows, std::v
 
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
                                     std::vector<Eigen::Index>& map, double scale) {
+  // Points on one line are told before CGAL's triangulation, which walks
+  // along the line for each of them (see all_collinear).
+  if (const Eigen::MatrixX2d scaled = P * scale; all_collinear(scaled)) {
+    std::vector<std::pair<double, double>> distinct;
+    for (Eigen::Index i = 0; i < scaled.rows(); ++i) distinct.emplace_back(scaled(i, 0), scaled(i, 1));
+    std::sort(distinct.begin(), distinct.end());
+    require_points(std::unique(distinct.begin(), distinct.end()) - distinct.begin(), 3, "polygon");
+    throw InvalidInput("all points lie on one line: no polygon encloses them");
+  }
   Repeats2 repeats;
   Delaunay2 dt;
   {

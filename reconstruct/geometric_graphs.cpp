@@ -1,5 +1,7 @@
 #include "reconstruct/geometric_graphs.h"
 
+#include "core/predicates.h"
+
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Fuzzy_sphere.h>
@@ -50,8 +52,15 @@ Delaunay delaunay(const Eigen::MatrixX2d& V) {
   using DT = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
   std::vector<std::pair<K::Point_2, int>> pts;
   for (Eigen::Index f : first) d.rows.push_back(static_cast<int>(f)), pts.emplace_back(d.P[f], static_cast<int>(f));
-  DT dt(pts.begin(), pts.end());
   const auto edge = [](int a, int b) { return Edge{std::min(a, b), std::max(a, b)}; };
+  if (all_collinear(V)) {  // consecutive points along the line, all on the hull (see all_collinear)
+    std::sort(pts.begin(), pts.end());
+    for (std::size_t i = 1; i < pts.size(); ++i) d.edges.push_back(edge(pts[i - 1].second, pts[i].second));
+    std::sort(d.edges.begin(), d.edges.end());
+    d.hull = d.edges;
+    return d;
+  }
+  DT dt(pts.begin(), pts.end());
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
     const auto f = e->first;
     const int i = e->second;

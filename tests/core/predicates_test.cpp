@@ -86,5 +86,18 @@ TEST(Predicates, AllCoplanarIsExactWithDuplicatesAndCollinearStarts) {
   EXPECT_TRUE(collinear({1, 2, 3}, {1, 2, 3}, {5, 5, 5}));  // two equal points
 }
 
+TEST(Predicates, AllCollinearIsExactWithDuplicates) {
+  Eigen::MatrixX2d V(5, 2);
+  V << 0.125, 0.375, 0.125, 0.375, 0.25, 0.75, -1, -3, 0.5, 1.5;  // y = 3x exactly, the first point repeated
+  EXPECT_TRUE(all_collinear(V));
+  V(4, 1) = std::nextafter(1.5, 2.0);  // one ulp off the line
+  EXPECT_FALSE(all_collinear(V));
+  EXPECT_TRUE(all_collinear(Eigen::MatrixX2d::Ones(3, 2)));  // one point three times
+  EXPECT_TRUE(all_collinear(V.topRows(2)));
+  Eigen::MatrixX2d W(3, 2);
+  W << 0, 0, 1, 1e-300, 2, 0;  // a triangle a hair tall
+  EXPECT_FALSE(all_collinear(W));
+}
+
 }  // namespace
 }  // namespace scanstation

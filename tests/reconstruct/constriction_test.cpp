@@ -266,6 +266,14 @@ TEST(Constriction3, DegenerateInputs) {
   Eigen::MatrixX3d line(4, 3);
   line << 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3;
   test::expect_error<InvalidInput>([&] { reconstruct_surface(line); }, {"on one line"});
+  // In the plane: points on one line (told before any triangulation, which
+  // walks the line for every point), and two distinct points repeated.
+  Eigen::MatrixX2d on_line(5, 2);
+  on_line << 0, 0, 3, 1.5, 1, 0.5, 3, 1.5, 2, 1;
+  test::expect_error<InvalidInput>([&] { reconstruct_curve(on_line); }, {"on one line"});
+  Eigen::MatrixX2d two(4, 2);
+  two << 0, 0, 1, 1, 0, 0, 1, 1;
+  test::expect_error<InvalidInput>([&] { reconstruct_curve(two); }, {"at least 3 distinct points", "got 2"});
   Eigen::MatrixX3d nan = Eigen::MatrixX3d::Random(6, 3);
   nan(2, 1) = std::nan("");
   test::expect_error<InvalidInput>([&] { reconstruct_surface(nan); }, {"NaN"});

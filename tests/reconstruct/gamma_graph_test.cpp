@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <set>
 #include <vector>
@@ -314,6 +315,20 @@ TEST(GammaGraph, CollinearAndCoplanarInput) {
   EXPECT_EQ(fast<2>(L, 1, 1), chain);  // no vertex off the line: both half-planes empty
   EXPECT_EQ(fast<2>(L, GammaRange{-1, 1, 0, 1}), chain);
   EXPECT_EQ(fast<2>(L, GammaRange{-1, 1, -1, 1}), test::brute_gamma_range<2>(L, -1, 1, -1, 1));
+  // More of them, shuffled and unevenly spaced, on a slanted line (exact:
+  // y = x/2 in binary fractions): the fast graph (which tells collinear
+  // input before any triangulation) against the brute force.
+  std::vector<int> steps(24);
+  std::iota(steps.begin(), steps.end(), -12);
+  std::shuffle(steps.begin(), steps.end(), std::mt19937(11));
+  Eigen::MatrixX2d M(24, 2);
+  for (Eigen::Index i = 0; i < M.rows(); ++i) {
+    const int k = steps[static_cast<std::size_t>(i)];
+    const double x = k + k * k / 64.0;  // increasing in k: distinct
+    M.row(i) << x, x / 2;
+  }
+  for (const double c : {-1.0, -0.5, 0.0, 0.7, 1.0}) EXPECT_EQ(fast<2>(M, c, -c), test::brute_gamma<2>(M, c, -c)) << c;
+  EXPECT_EQ(fast<2>(M, GammaRange{-1, 1, 0, 1}), test::brute_gamma_range<2>(M, -1, 1, 0, 1));
   Eigen::MatrixX3d C(4, 3);
   C << 0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3;
   EXPECT_TRUE(fast<3>(C, -1, -1).empty());  // collinear: no triangles at all

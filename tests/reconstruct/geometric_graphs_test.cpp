@@ -205,6 +205,11 @@ TEST(GeometricGraphs, DegenerateInput) {
   EXPECT_EQ(edges(euclidean_minimum_spanning_tree(L)), chain);
   EXPECT_EQ(edges(gabriel_graph(L)), chain);
   EXPECT_EQ(edges(closest_pairs(L)), chain);  // all four at the same distance
+  Eigen::MatrixX2d R(6, 2);  // the line again, row 1 repeated last: the copy is left out
+  R << L, L.row(1);
+  EXPECT_EQ(edges(delaunay_edges(R)), chain);
+  EXPECT_EQ(edges(relative_neighborhood_graph(R)), chain);
+  EXPECT_EQ(edges(convex_hull_edges(R)), chain);
   Eigen::MatrixX2d D(4, 2);
   D << 0, 0, 1, 0, 0, 0, 0, 1;  // duplicate of row 0 is left out
   EXPECT_EQ(edges(delaunay_edges(D)), (Edges{{0, 1}, {0, 3}, {1, 3}}));
