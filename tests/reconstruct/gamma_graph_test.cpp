@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <random>
 #include <set>
@@ -268,6 +269,25 @@ TEST(GammaGraph, CocircularSetHasAllChordsInDelaunayRange) {
   W << V, Eigen::RowVector2d(0, 0);
   EXPECT_EQ(fast<2>(W, dt), test::brute_gamma_range<2>(W, -1, 1, 0, 1));
   EXPECT_EQ(fast<2>(W, GammaRange{-1, 1, -1, 1}), test::brute_gamma_range<2>(W, -1, 1, -1, 1));
+}
+
+// A lattice is co-circular square by square (each square's diagonals are
+// chords of an empty circle, one not a Delaunay edge), with points all
+// around: its chords' profiles come from their square's points alone (not
+// a scan of every point), and must equal the brute force.
+TEST(GammaGraph, LatticeSquaresMatchBruteForce) {
+  for (const auto& [nx, ny, hx, hy] : {std::array<double, 4>{5, 5, 1, 1}, std::array<double, 4>{4, 6, 0.5, 0.75}}) {
+    Eigen::MatrixX2d V(static_cast<Eigen::Index>(nx * ny), 2);
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j) V.row(static_cast<Eigen::Index>(i * ny + j)) << i * hx, j * hy;
+    for (double c1 : kGrid)
+      for (double c0 : kGrid)
+        if (std::abs(c0) <= std::abs(c1)) {
+          ASSERT_EQ(fast<2>(V, c0, c1), test::brute_gamma<2>(V, c0, c1)) << nx << " c0 " << c0 << " c1 " << c1;
+        }
+    for (const auto& g : {GammaRange{-1, 1, 0, 1}, GammaRange{-1, 1, -1, 1}, GammaRange{0, 0.5, 0.2, 1}})
+      EXPECT_EQ(fast<2>(V, g), test::brute_gamma_range<2>(V, g.c0, g.c1, g.c2, g.c3)) << nx;
+  }
 }
 
 Eigen::MatrixX3d cube() {
