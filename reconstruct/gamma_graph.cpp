@@ -333,32 +333,37 @@ std::set<Index<D>> simplices_of(const std::vector<Candidate<D>>& out) {
 }
 
 // All k-subsets of each cluster's vertex set that are not Delaunay simplices
-// (degenerate input only). In the plane the cluster's own points bound such
-// a chord: its points lie on the empty circle C, on both sides of the chord
-// (a chord with them all on one side is a side of the cluster's polygon, a
-// Delaunay edge), and every other point lies strictly outside C, so a disc
-// of the chord's pencil grown past C on either side takes in a cluster
-// point first. (A square grid of 90k points: 114 s for the Gabriel graph
-// with an O(N) scan per chord.) In space a non-Delaunay triangle of a
-// co-spherical cluster may have the cluster on one side only (a polygonal
-// face of the cluster's polytope): it is scanned against every point.
+// (degenerate input only), each profiled against the points `bounding`
+// gives for its cluster, or against every point when it gives none.
+// In the plane the cluster's own points bound such a chord: they lie on the
+// empty circle C on both sides of it (a chord with them all on one side is
+// a side of the cluster's polygon, a Delaunay edge), every other point lies
+// strictly outside C, so a disc of the chord's pencil grown past C on
+// either side takes in a cluster point first. (A square lattice of 90k
+// points: 114 s for the Gabriel graph with a scan of every point per
+// chord, 1 s so.) In space so does a triangle with cluster points on both
+// sides of its plane; one with them all on one side lies in a face of the
+// cluster's polytope, whose points are on one circle c, so its pencil is
+// that of the face's Delaunay triangles: the spheres through c. The first
+// point such a sphere takes in beyond the cluster lies on an empty sphere
+// through c, so it makes a Delaunay cell with a triangle of that face: it
+// is the apex of a cell across the cluster's boundary. So a cluster of
+// finite cells is bounded by its points and those apexes.
 template <int D>
 void add_cluster_subsets(const Input<D>& in, const std::map<int, std::set<int>>& groups,
+                         const std::function<std::vector<int>(int root, const std::vector<int>& points)>& bounding,
                          std::set<Index<D>>& seen, std::vector<Candidate<D>>& out) {
   for (const auto& [root, vs] : groups) {
     if (static_cast<int>(vs.size()) <= D + 1) continue;
     const std::vector<int> v(vs.begin(), vs.end());
+    const std::vector<int> near = bounding(root, v);
     std::vector<int> pick(D);
     std::function<void(int, int)> rec = [&](int from, int depth) {
       if (depth == D) {
         Index<D> s;
         std::copy(pick.begin(), pick.end(), s.begin());
         if (!GammaTraits<D>::is_simplex(positions(in, s)) || !seen.insert(s).second) return;
-        if constexpr (D == 2) {
-          out.push_back({s, profile_among<D>(in, s, v)});
-        } else {
-          out.push_back({s, scan_profile(in, s)});
-        }
+        out.push_back({s, near.empty() ? scan_profile(in, s) : profile_among<D>(in, s, near)});
         return;
       }
       for (int i = from; i < static_cast<int>(v.size()); ++i) pick[depth] = v[i], rec(i + 1, depth + 1);
@@ -424,7 +429,7 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
   });
   if (groups.empty()) return out;
   std::set<Index<2>> seen = simplices_of(out);
-  add_cluster_subsets<2>(in, groups, seen, out);
+  add_cluster_subsets<2>(in, groups, [](int, const std::vector<int>& points) { return points; }, seen, out);
   return out;
 }
 
@@ -491,6 +496,26 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
   });
   if (groups.empty()) return out;
   std::set<Index<3>> seen = simplices_of(out);
+  // A group's points and the apexes of the cells across its boundary bound
+  // its triangles (see add_cluster_subsets). A group of hull facets in one
+  // plane likewise: a triangle there with no other point of the plane in
+  // its circle is first met, on the inner side, by a sphere through that
+  // circle that is empty, hence by the apex of a cell behind the face; the
+  // outer side holds no point; one with such a point in its circle needs
+  // only to know that the inner side holds some.
+  std::map<int, std::set<int>> apexes;
+  for (const auto c : cells) {
+    const int root = uf.find(c->info());
+    if (!groups.count(root)) continue;
+    for (int i = 0; i < 4; ++i)
+      if (const auto g = c->neighbor(i); uf.find(g->info()) != root)
+        if (const auto v = dt.mirror_vertex(c, i); !dt.is_infinite(v)) apexes[root].insert(v->info());
+  }
+  const auto bounding = [&](int root, const std::vector<int>& points) {
+    std::vector<int> near = points;
+    if (const auto it = apexes.find(root); it != apexes.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+    return near;
+  };
   // A coplanar hull group of 4 points has two facets but only 4 vertices.
   for (auto& [root, vs] : groups)
     if (vs.size() == 4) {
@@ -500,10 +525,10 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
         for (int j = 0, k = 0; j < 4; ++j)
           if (j != skip) s[k++] = v[j];
         if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
-          out.push_back({s, scan_profile(in, s)});
+          out.push_back({s, profile_among<3>(in, s, bounding(root, v))});
       }
     }
-  add_cluster_subsets<3>(in, groups, seen, out);
+  add_cluster_subsets<3>(in, groups, bounding, seen, out);
   return out;
 }
 

@@ -290,6 +290,22 @@ TEST(GammaGraph, LatticeSquaresMatchBruteForce) {
   }
 }
 
+// In space each unit cube of a lattice is co-spherical, its square faces
+// co-circular: a cluster's triangles are bounded by its points and the
+// apexes across its boundary (not a scan of every point).
+TEST(GammaGraph, CubicLatticeMatchesBruteForce) {
+  for (const auto& [n, h] : {std::array<double, 2>{3, 1}, std::array<double, 2>{3, 0.75}}) {
+    Eigen::MatrixX3d V(static_cast<Eigen::Index>(n * n * (n + 1)), 3);
+    Eigen::Index r = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k <= n; ++k) V.row(r++) << i, j * h, k * 0.5;
+    for (double c : {-0.6, 0.0, 0.4, 1.0}) EXPECT_EQ(fast<3>(V, c, -c), test::brute_gamma<3>(V, c, -c)) << c;
+    for (const auto& g : {GammaRange{-1, 1, 0, 1}, GammaRange{-1, 1, -1, 1}})
+      EXPECT_EQ(fast<3>(V, g), test::brute_gamma_range<3>(V, g.c0, g.c1, g.c2, g.c3)) << h;
+  }
+}
+
 Eigen::MatrixX3d cube() {
   Eigen::MatrixX3d V(8, 3);
   for (int i = 0; i < 8; ++i) V.row(i) << (i & 1 ? 1 : -1), (i & 2 ? 1 : -1), (i & 4 ? 1 : -1);
