@@ -78,9 +78,11 @@ Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range)
 /// Algorithm. floor ≥ 0: Delaunay triangulation (CGAL, Epick); lo and hi of
 /// a Delaunay simplex come from the vertices opposite it in its ≤ 2 incident
 /// cells, O(1) each (Theorem 3.2); co-spherical clusters of cells (and, in
-/// 3D, coplanar hull facets) add all their k-subsets, scanned in O(N) each
-/// (degenerate input only). Total O(N log N) (2D) / O(size of DT) (3D) for
-/// non-degenerate input.
+/// 3D, coplanar hull facets) add all their k-subsets, each bounded by the
+/// cluster's points and the apexes of the cells across its boundary, O(m)
+/// for a cluster of m points (degenerate input only); collinear input (2D)
+/// gives the pairs of neighbours along the line, no triangulation. Total
+/// O(N log N) (2D) / O(size of DT) (3D) for non-degenerate input.
 /// floor < 0: additionally the simplices with no empty ball but an empty
 /// symmetric lens N_γ(floor,floor) (c'1 < 0 needs that, Lemma 3.3). 2D:
 /// every pair is screened by a Yao-cone test (a vertex q within 0.45·α of the
