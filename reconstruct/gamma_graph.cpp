@@ -372,8 +372,17 @@ void add_cluster_subsets(const Input<D>& in, const std::map<int, std::set<int>>&
   }
 }
 
-// Every simplex with an empty touching ball (c'1 ≥ 0), 2D.
-std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
+// Whether to list, in 3D, the triangles of a planar hull face that hold
+// another point of the face inside their circle. Only neighbourhoods with a
+// half-space take them in (balls_empty: t = ±1), and a face of m points has
+// Θ(m³) of them against O(m) others: the 6 faces of a 15×15×15 lattice
+// have 11M, which made γ(0,0) run for minutes. So they are listed only for
+// the queries that can take them in (takes_hull_discs).
+enum class HullDiscs { skip, list };
+
+// Every simplex with an empty touching ball (c'1 ≥ 0), 2D (no hull discs in
+// the plane).
+std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in, HullDiscs) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
   using Fb = CGAL::Triangulation_face_base_with_info_2<int, K>;
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
@@ -433,8 +442,10 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in) {
   return out;
 }
 
-// Every simplex with an empty touching ball (c'1 ≥ 0), 3D.
-std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
+// Every simplex with an empty touching ball (c'1 ≥ 0), 3D. With
+// HullDiscs::skip the triangles of a planar hull face that hold another
+// point of the face inside their circle are left out (see HullDiscs).
+std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs discs) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
   using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K>;
   using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
@@ -467,11 +478,13 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
     out.push_back({s, delaunay_profile(in, s, {dt.is_infinite(opp) ? -1 : opp->info(),
                                                dt.is_infinite(mir) ? -1 : mir->info()})});
   }
-  // Clusters: finite cells on one empty sphere; hull facets in one plane.
-  Clusters uf;
+  // Clusters: finite cells on one empty sphere, hull facets on one circle
+  // (`spheres`); hull facets in one plane (`planes`).
+  Clusters spheres, planes;
   std::vector<DT::Cell_handle> cells;
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    c->info() = uf.add();
+    c->info() = spheres.add();
+    planes.add();
     cells.push_back(c);
   }
   for (const auto c : cells)
@@ -484,51 +497,62 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in) {
       int k = 0;
       for (int j = 0; j < 4; ++j)
         if (!dt.is_infinite(c->vertex(j))) p[k++] = c->vertex(j)->point();
-      const bool same = dt.is_infinite(c) ? CGAL::orientation(p[0], p[1], p[2], v->point()) == CGAL::COPLANAR
-                                          : CGAL::side_of_oriented_sphere(p[0], p[1], p[2], p[3], v->point()) ==
-                                                CGAL::ON_ORIENTED_BOUNDARY;
-      if (same) uf.join(c->info(), g->info());
-    }
-  const auto groups = cluster_groups(uf, static_cast<int>(cells.size()), [&](int t, std::set<int>& vs) {
-    const auto c = cells[static_cast<std::size_t>(t)];
-    for (int i = 0; i < 4; ++i)
-      if (!dt.is_infinite(c->vertex(i))) vs.insert(c->vertex(i)->info());
-  });
-  if (groups.empty()) return out;
-  std::set<Index<3>> seen = simplices_of(out);
-  // A group's points and the apexes of the cells across its boundary bound
-  // its triangles (see add_cluster_subsets). A group of hull facets in one
-  // plane likewise: a triangle there with no other point of the plane in
-  // its circle is first met, on the inner side, by a sphere through that
-  // circle that is empty, hence by the apex of a cell behind the face; the
-  // outer side holds no point; one with such a point in its circle needs
-  // only to know that the inner side holds some.
-  std::map<int, std::set<int>> apexes;
-  for (const auto c : cells) {
-    const int root = uf.find(c->info());
-    if (!groups.count(root)) continue;
-    for (int i = 0; i < 4; ++i)
-      if (const auto g = c->neighbor(i); uf.find(g->info()) != root)
-        if (const auto v = dt.mirror_vertex(c, i); !dt.is_infinite(v)) apexes[root].insert(v->info());
-  }
-  const auto bounding = [&](int root, const std::vector<int>& points) {
-    std::vector<int> near = points;
-    if (const auto it = apexes.find(root); it != apexes.end()) near.insert(near.end(), it->second.begin(), it->second.end());
-    return near;
-  };
-  // A coplanar hull group of 4 points has two facets but only 4 vertices.
-  for (auto& [root, vs] : groups)
-    if (vs.size() == 4) {
-      std::vector<int> v(vs.begin(), vs.end());
-      for (int skip = 0; skip < 4; ++skip) {
-        Index<3> s;
-        for (int j = 0, k = 0; j < 4; ++j)
-          if (j != skip) s[k++] = v[j];
-        if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
-          out.push_back({s, profile_among<3>(in, s, bounding(root, v))});
+      if (!dt.is_infinite(c)) {
+        if (CGAL::side_of_oriented_sphere(p[0], p[1], p[2], p[3], v->point()) == CGAL::ON_ORIENTED_BOUNDARY)
+          spheres.join(c->info(), g->info());
+      } else if (CGAL::orientation(p[0], p[1], p[2], v->point()) == CGAL::COPLANAR) {
+        planes.join(c->info(), g->info());
+        if (CGAL::coplanar_side_of_bounded_circle(p[0], p[1], p[2], v->point()) == CGAL::ON_BOUNDARY)
+          spheres.join(c->info(), g->info());
       }
     }
-  add_cluster_subsets<3>(in, groups, bounding, seen, out);
+  std::set<Index<3>> seen;
+  // A group's points and the apexes of the cells across its boundary bound
+  // its triangles (see add_cluster_subsets). A group of hull facets on one
+  // circle likewise: the circle holds no other point of the plane, so a
+  // triangle there is first met, on the inner side, by a sphere through
+  // the circle that is empty, hence by the apex of a cell behind the face;
+  // the outer side holds no point. A triangle of a planar hull face with
+  // another point of the face in its circle needs only to know that the
+  // inner side holds some (the apexes behind the face say so).
+  const auto add_groups = [&](Clusters& uf) {
+    const auto groups = cluster_groups(uf, static_cast<int>(cells.size()), [&](int t, std::set<int>& vs) {
+      const auto c = cells[static_cast<std::size_t>(t)];
+      for (int i = 0; i < 4; ++i)
+        if (!dt.is_infinite(c->vertex(i))) vs.insert(c->vertex(i)->info());
+    });
+    if (groups.empty()) return;
+    if (seen.empty()) seen = simplices_of(out);
+    std::map<int, std::set<int>> apexes;
+    for (const auto c : cells) {
+      const int root = uf.find(c->info());
+      if (!groups.count(root)) continue;
+      for (int i = 0; i < 4; ++i)
+        if (const auto g = c->neighbor(i); uf.find(g->info()) != root)
+          if (const auto v = dt.mirror_vertex(c, i); !dt.is_infinite(v)) apexes[root].insert(v->info());
+    }
+    const auto bounding = [&](int root, const std::vector<int>& points) {
+      std::vector<int> near = points;
+      if (const auto it = apexes.find(root); it != apexes.end())
+        near.insert(near.end(), it->second.begin(), it->second.end());
+      return near;
+    };
+    // A hull group of 4 points has two facets but only 4 vertices.
+    for (auto& [root, vs] : groups)
+      if (vs.size() == 4) {
+        std::vector<int> v(vs.begin(), vs.end());
+        for (int skip = 0; skip < 4; ++skip) {
+          Index<3> s;
+          for (int j = 0, k = 0; j < 4; ++j)
+            if (j != skip) s[k++] = v[j];
+          if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
+            out.push_back({s, profile_among<3>(in, s, bounding(root, v))});
+        }
+      }
+    add_cluster_subsets<3>(in, groups, bounding, seen, out);
+  };
+  add_groups(spheres);
+  if (discs == HullDiscs::list) add_groups(planes);
   return out;
 }
 
@@ -749,10 +773,10 @@ void for_each_screened(const Input<3>& in, double, Visit&& visit) {
 // All simplices with c'1 ≥ floor and their profiles (exact for c'1 < 0 when
 // they come from the lens path: see gamma_values in the header).
 template <int D>
-std::vector<Candidate<D>> candidates(const Input<D>& in, double floor) {
+std::vector<Candidate<D>> candidates(const Input<D>& in, double floor, HullDiscs discs) {
   std::vector<Candidate<D>> out;
   if (static_cast<int>(in.P.size()) < D) return out;
-  for (auto& c : empty_ball_simplices(in)) {
+  for (auto& c : empty_ball_simplices(in, discs)) {
     const auto cp = largest_empty(c.profile);
     if (cp && (*cp)[1] >= floor) out.push_back(c);
   }
@@ -824,7 +848,7 @@ std::vector<Index<D>> negative_graph(const Input<D>& in, double c0, double c1) {
   std::vector<Index<D>> rows;
   if (static_cast<int>(in.P.size()) < D) return rows;
   std::vector<Index<D>> with_ball;
-  for (const auto& c : empty_ball_simplices(in)) {
+  for (const auto& c : empty_ball_simplices(in, HullDiscs::skip)) {  // |c0| ≤ |c1| < 1: no half-space
     if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);
     Index<D> key = c.s;
     std::sort(key.begin(), key.end());
@@ -853,7 +877,9 @@ Eigen::Matrix<int, Eigen::Dynamic, D> fixed_graph(const Eigen::Matrix<double, Ei
   const Input<D> in = prepare<D>(V);
   if (c1 < 0 && c1 > -1) return to_matrix(in, negative_graph(in, c0, c1));
   std::vector<Index<D>> rows;
-  for (const auto& c : candidates(in, std::min(c1, 0.0)))
+  // A hull disc needs both balls half-spaces (c1 ≥ 0) or one (c1 < 0).
+  const bool discs = (c1 == 1 && std::abs(c0) == 1) || c1 == -1;
+  for (const auto& c : candidates(in, std::min(c1, 0.0), discs ? HullDiscs::list : HullDiscs::skip))
     if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);
   return to_matrix(in, rows);
 }
@@ -868,7 +894,9 @@ Eigen::Matrix<int, Eigen::Dynamic, D> range_graph(const Eigen::Matrix<double, Ei
   if (g.c0 > g.c1 || g.c2 > g.c3) throw InvalidInput("gamma graph: empty parameter interval (need c0 ≤ c1, c2 ≤ c3)");
   const Input<D> in = prepare<D>(V);
   std::vector<Index<D>> rows;
-  for (const auto& c : candidates(in, std::min(g.c2, 0.0))) {
+  // A hull disc's (c'0, c'1) is (1,1), (-1,1) or (·,-1) (largest_empty).
+  const bool discs = (g.c3 == 1 && (g.c0 == -1 || g.c1 == 1)) || g.c2 == -1;
+  for (const auto& c : candidates(in, std::min(g.c2, 0.0), discs ? HullDiscs::list : HullDiscs::skip)) {
     const auto cp = largest_empty(c.profile);
     if (cp && (*cp)[0] >= g.c0 && (*cp)[0] <= g.c1 && (*cp)[1] >= g.c2 && (*cp)[1] <= g.c3) rows.push_back(c.s);
   }
@@ -881,7 +909,7 @@ void values(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, double floor, Eig
   check_parameter(floor, "floor");
   const Input<D> in = prepare<D>(V);
   std::vector<std::pair<Index<D>, Eigen::Vector2d>> rows;
-  for (const auto& c : candidates(in, floor)) {
+  for (const auto& c : candidates(in, floor, HullDiscs::list)) {
     Index<D> s = c.s;
     for (int& v : s) v = in.id[v];
     rows.emplace_back(s, *largest_empty(c.profile));
@@ -913,7 +941,7 @@ void gamma_pencil_bounds(const Eigen::MatrixX2d& V, Eigen::MatrixX2i& E, Eigen::
   const Input<2> in = prepare<2>(V);
   std::vector<std::pair<Index<2>, Eigen::Vector2d>> rows;
   if (in.P.size() >= 2)
-    for (const auto& c : empty_ball_simplices(in)) {
+    for (const auto& c : empty_ball_simplices(in, HullDiscs::skip)) {
       const auto cp = largest_empty(c.profile);
       if (!cp || (*cp)[1] < 0) continue;
       rows.push_back({{in.id[c.s[0]], in.id[c.s[1]]}, Eigen::Vector2d(c.profile.lo, c.profile.hi)});

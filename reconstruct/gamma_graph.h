@@ -78,9 +78,15 @@ Eigen::MatrixX3i gamma_graph(const Eigen::MatrixX3d& V, const GammaRange& range)
 /// Algorithm. floor ≥ 0: Delaunay triangulation (CGAL, Epick); lo and hi of
 /// a Delaunay simplex come from the vertices opposite it in its ≤ 2 incident
 /// cells, O(1) each (Theorem 3.2); co-spherical clusters of cells (and, in
-/// 3D, coplanar hull facets) add all their k-subsets, each bounded by the
-/// cluster's points and the apexes of the cells across its boundary, O(m)
-/// for a cluster of m points (degenerate input only); collinear input (2D)
+/// 3D, hull facets on one circle) add all their k-subsets, each bounded by
+/// the cluster's points and the apexes of the cells across its boundary,
+/// O(m) for a cluster of m points (degenerate input only). The triangles of
+/// a planar hull face with another point of the face in their circle
+/// (Θ(m³) for a face of m points) belong only to neighbourhoods with a
+/// half-space, so they are listed only when the query has one (γ(±1,1),
+/// γ(·,-1), ranges reaching c'0 = -1 with c'1 = 1, or c'1 = -1; always here):
+/// γ(0,0) of a 15×15×15 lattice took more than 300 s with them, 0.4 s
+/// without (γ(-1,1) of that lattice is 11M triangles). Collinear input (2D)
 /// gives the pairs of neighbours along the line, no triangulation. Total
 /// O(N log N) (2D) / O(size of DT) (3D) for non-degenerate input.
 /// floor < 0: additionally the simplices with no empty ball but an empty

@@ -301,7 +301,14 @@ TEST(GammaGraph, CubicLatticeMatchesBruteForce) {
       for (int j = 0; j < n; ++j)
         for (int k = 0; k <= n; ++k) V.row(r++) << i, j * h, k * 0.5;
     for (double c : {-0.6, 0.0, 0.4, 1.0}) EXPECT_EQ(fast<3>(V, c, -c), test::brute_gamma<3>(V, c, -c)) << c;
-    for (const auto& g : {GammaRange{-1, 1, 0, 1}, GammaRange{-1, 1, -1, 1}})
+    // The hull's faces are planar groups of 9 and 12 points: queries with a
+    // half-space (γ(±1,1), ranges reaching c'0 = -1 and c'1 = 1) take in
+    // the triangles with another point of the face in their circle, the
+    // others leave them out.
+    for (const auto& [c0, c1] : {std::array<double, 2>{-1, 1}, {1, 1}, {0.5, 1}, {-0.3, 0.9}})
+      EXPECT_EQ(fast<3>(V, c0, c1), test::brute_gamma<3>(V, c0, c1)) << c0 << " " << c1;
+    for (const auto& g : {GammaRange{-1, 1, 0, 1}, GammaRange{-1, 1, -1, 1}, GammaRange{-0.5, 0.5, 0, 1},
+                          GammaRange{-1, 1, 0.5, 1}, GammaRange{-0.9, 1, 0, 0.95}})
       EXPECT_EQ(fast<3>(V, g), test::brute_gamma_range<3>(V, g.c0, g.c1, g.c2, g.c3)) << h;
   }
 }
