@@ -23,6 +23,7 @@
 #include "core/errors.h"
 #include "core/unique_points.h"
 #include "core/unit_scale.h"
+#include "reconstruct/edge_length_order.h"
 #include "reconstruct/gamma_graph.h"
 
 namespace scanstation {
@@ -152,7 +153,7 @@ Eigen::MatrixX2i relative_neighborhood_graph(const Eigen::MatrixX2d& V) {
 
 Eigen::MatrixX2i euclidean_minimum_spanning_tree(const Eigen::MatrixX2d& V) {
   Delaunay d = delaunay(V);
-  std::sort(d.edges.begin(), d.edges.end(), ShorterEdge{d.P});
+  sort_by_length(d.edges, d.P, std::less<Edge>());  // Kruskal's order: exact length, then rows
   std::vector<int> parent(d.P.size());
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<Edge> out;

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/unique_points.h"
 #include "reconstruct/delaunay_complex.h"
+#include "reconstruct/edge_length_order.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Fuzzy_sphere.h>
@@ -187,7 +188,8 @@ Eigen::MatrixX2i to_matrix(const Candidates& c, const std::vector<Edge>& edges) 
 
 std::vector<Edge> spanning_tree(const Candidates& c) {
   std::vector<Edge> edges = gabriel_edges(c);
-  std::sort(edges.begin(), edges.end(), ShorterEdge{c});
+  const ShorterEdge shorter{c};
+  sort_by_length(edges, c.P, [&](const Edge& a, const Edge& b) { return shorter.rows(a) < shorter.rows(b); });
   UnionFind trees(c.P.size());
   std::vector<Edge> out;
   for (const Edge& e : edges)
