@@ -1,7 +1,7 @@
 // The incremental constriction against a from-scratch reconstruction of the
 // same points, measured in the same run.
 //
-//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random] [--shape S] [--subdivision L] [--noise S] [--margin M]
+//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random|profiles] [--shape S] [--subdivision L] [--noise S] [--margin M]
 //   build/bench/incremental_bench recall [--batches B] [--margin M] MESH.off ...
 //
 // timing: N points (default 100000) sampled on a simulated shape (chalice,
@@ -20,6 +20,12 @@
 // shape's units (the ellipsoid's radii are 3, 2, 1): noise-free samples of
 // flat facets lie a rounding error off their planes, which no scanner's
 // points do (docs/design.md, incremental constriction).
+// --order profiles: what a turntable laser delivers instead, one profile per
+// batch: the shape's section by the half-plane through the z axis at the
+// batch's angle (B angles round the turn), N/B points along it, evenly
+// spaced; the ellipsoid here is the smooth one (no facets), the chalice its
+// profile revolved. --noise S then moves each point by N(0, S²) per axis
+// (0 gives exactly symmetric rings: a degenerate input for both).
 // --stop-after S feeds only the first S batches (the median is then over
 // early batches, each a larger share of the points so far: pessimistic).
 //
@@ -40,8 +46,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <numbers>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -61,8 +70,51 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-std::vector<Eigen::Index> arrival_order(const Eigen::MatrixX3d& P, bool scan) {
-  return scan ? sim::turntable_order(P) : sim::shuffled_order(P.rows(), 11);
+struct Args {
+  Eigen::Index points = 100000;
+  int batches = 100, every = 1, margin = 2, stop_after = -1;
+  bool scan = true;
+  bool profiles = false;  // --order profiles: each batch one laser profile (see the header)
+  std::string shape = "chalice";
+  int subdivision = 5;
+  double noise = 0.0;
+  std::vector<std::string> files;
+};
+
+std::vector<Eigen::Index> arrival_order(const Eigen::MatrixX3d& P, const Args& a) {
+  if (a.profiles) {  // the points are made in arrival order
+    std::vector<Eigen::Index> order(static_cast<std::size_t>(P.rows()));
+    std::iota(order.begin(), order.end(), Eigen::Index{0});
+    return order;
+  }
+  return a.scan ? sim::turntable_order(P) : sim::shuffled_order(P.rows(), 11);
+}
+
+// A turntable laser's points: one profile per batch, the object's section by
+// the half-plane through the z axis at the batch's angle, `points / batches`
+// points along it, evenly spaced (the chalice: by arc length, its two points
+// on the axis left out; the ellipsoid (radii 3, 2, 1): evenly in the polar
+// angle). --noise moves each point by N(0, noise²) along each axis.
+Eigen::MatrixX3d profile_points(const Args& a) {
+  const int per = static_cast<int>(std::max<Eigen::Index>(1, a.points / a.batches));
+  const Eigen::MatrixX2d section = sim::resample_polyline(sim::chalice_profile(200), per + 2);
+  sim::Random random(2024);
+  Eigen::MatrixX3d P(static_cast<Eigen::Index>(a.batches) * per, 3);
+  Eigen::Index row = 0;
+  for (int b = 0; b < a.batches; ++b) {
+    const double theta = 2.0 * std::numbers::pi * b / a.batches;
+    for (int k = 0; k < per; ++k, ++row) {
+      if (a.shape == "ellipsoid") {
+        const double phi = std::numbers::pi * (k + 0.5) / per;
+        P.row(row) << 3.0 * std::sin(phi) * std::cos(theta), 2.0 * std::sin(phi) * std::sin(theta), std::cos(phi);
+      } else {
+        const double r = section(k + 1, 0), z = section(k + 1, 1);
+        P.row(row) << r * std::cos(theta), r * std::sin(theta), z;
+      }
+      if (a.noise > 0) P.row(row) += a.noise * Eigen::RowVector3d(random.normal(), random.normal(), random.normal());
+    }
+  }
+  return P;
 }
 
 std::size_t batch_end(std::size_t n, int batches, int b) { return n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(batches); }
@@ -82,17 +134,8 @@ Eigen::MatrixX3i in_input_numbering(const SurfaceReconstruction& r, const std::v
   return faces;
 }
 
-struct Args {
-  Eigen::Index points = 100000;
-  int batches = 100, every = 1, margin = 2, stop_after = -1;
-  bool scan = true;
-  std::string shape = "chalice";
-  int subdivision = 5;
-  double noise = 0.0;
-  std::vector<std::string> files;
-};
-
 Eigen::MatrixX3d shape_points(const Args& a) {
+  if (a.profiles) return profile_points(a);
   const TriangleMesh mesh = a.shape == "ellipsoid" ? sim::ellipsoid({3.0, 2.0, 1.0}, a.subdivision)
                                                    : sim::surface_of_revolution(sim::chalice_profile(200), 256);
   return sim::sample_surface(mesh, a.points, 2024, a.noise).positions;
@@ -100,10 +143,10 @@ Eigen::MatrixX3d shape_points(const Args& a) {
 
 int timing(const Args& a) {
   const Eigen::MatrixX3d P = shape_points(a);
-  const std::vector<Eigen::Index> order = arrival_order(P, a.scan);
+  const std::vector<Eigen::Index> order = arrival_order(P, a);
   const std::size_t n = order.size();
   std::printf("%s (subdivision %d, noise %g), %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), a.subdivision,
-              a.noise, n, a.batches, a.scan ? "scan" : "random", a.margin);
+              a.noise, n, a.batches, a.profiles ? "profiles" : a.scan ? "scan" : "random", a.margin);
   std::printf("%6s %9s %10s %10s %8s %9s %7s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "cpu_ratio",
               "joined", "touched", "rings", "wide", "all");
   IncrementalConstriction inc(surface_defaults(), a.margin);
@@ -149,7 +192,10 @@ int recall(const Args& a) {
     std::size_t wide = 0;
     bool valid = true;
     for (const bool scan : {true, false}) {
-      const std::vector<Eigen::Index> order = arrival_order(P, scan);
+      Args order_args = a;
+      order_args.scan = scan;
+      order_args.profiles = false;
+      const std::vector<Eigen::Index> order = arrival_order(P, order_args);
       IncrementalConstriction inc(surface_defaults(), a.margin);
       for (int b = 0; b < a.batches; ++b)
         inc.add_batch(sim::ordered_rows(P, order, batch_end(order.size(), a.batches, b - 1), batch_end(order.size(), a.batches, b)));
@@ -182,7 +228,11 @@ int main(int argc, char** argv) {
     if (arg == "--points") a.points = std::stoll(value());
     else if (arg == "--batches") a.batches = std::stoi(value());
     else if (arg == "--every") a.every = std::stoi(value());
-    else if (arg == "--order") a.scan = value() != "random";
+    else if (arg == "--order") {
+      const std::string order = value();
+      a.scan = order != "random";
+      a.profiles = order == "profiles";
+    }
     else if (arg == "--shape") a.shape = value();
     else if (arg == "--margin") a.margin = std::stoi(value());
     else if (arg == "--subdivision") a.subdivision = std::stoi(value());
