@@ -109,14 +109,18 @@ struct GammaTraits<3> {
     if (std::abs(val) > 1e-12 * mag) return val > 0 ? 1 : -1;
     return -static_cast<int>(CGAL::side_of_bounded_sphere(cg(s[0]), cg(s[1]), cg(s[2]), cg(p)));
   }
-  static OnPlane on_plane(const Simplex& s, const Vec& p) {
+  // p (in s's plane) strictly inside the triangle.
+  static bool in_open_triangle(const Simplex& s, const Vec& p) {
     const auto a = cg(s[0]), b = cg(s[1]), c = cg(s[2]), q = cg(p);
-    if (CGAL::coplanar_orientation(a, b, c, q) == CGAL::POSITIVE &&
-        CGAL::coplanar_orientation(b, c, a, q) == CGAL::POSITIVE &&
-        CGAL::coplanar_orientation(c, a, b, q) == CGAL::POSITIVE)
-      return OnPlane::blocked;
-    return CGAL::coplanar_side_of_bounded_circle(a, b, c, q) == CGAL::ON_BOUNDED_SIDE ? OnPlane::disc
-                                                                                      : OnPlane::outside;
+    return CGAL::coplanar_orientation(a, b, c, q) == CGAL::POSITIVE &&
+           CGAL::coplanar_orientation(b, c, a, q) == CGAL::POSITIVE &&
+           CGAL::coplanar_orientation(c, a, b, q) == CGAL::POSITIVE;
+  }
+  static OnPlane on_plane(const Simplex& s, const Vec& p) {
+    if (in_open_triangle(s, p)) return OnPlane::blocked;
+    return CGAL::coplanar_side_of_bounded_circle(cg(s[0]), cg(s[1]), cg(s[2]), cg(p)) == CGAL::ON_BOUNDED_SIDE
+               ? OnPlane::disc
+               : OnPlane::outside;
   }
   static int tie_sign(const Simplex& s, const Vec& a, const Vec& b) {
     return -static_cast<int>(CGAL::side_of_bounded_sphere(cg(s[0]), cg(s[1]), cg(s[2]), cg(a), cg(b)));
@@ -351,19 +355,18 @@ std::set<Index<D>> simplices_of(const std::vector<Candidate<D>>& out) {
 // finite cells is bounded by its points and those apexes.
 template <int D>
 void add_cluster_subsets(const Input<D>& in, const std::map<int, std::set<int>>& groups,
-                         const std::function<std::vector<int>(int root, const std::vector<int>& points)>& bounding,
+                         const std::function<Profile(int root, const std::vector<int>& points, const Index<D>& s)>& profile,
                          std::set<Index<D>>& seen, std::vector<Candidate<D>>& out) {
   for (const auto& [root, vs] : groups) {
     if (static_cast<int>(vs.size()) <= D + 1) continue;
     const std::vector<int> v(vs.begin(), vs.end());
-    const std::vector<int> near = bounding(root, v);
     std::vector<int> pick(D);
     std::function<void(int, int)> rec = [&](int from, int depth) {
       if (depth == D) {
         Index<D> s;
         std::copy(pick.begin(), pick.end(), s.begin());
         if (!GammaTraits<D>::is_simplex(positions(in, s)) || !seen.insert(s).second) return;
-        out.push_back({s, near.empty() ? scan_profile(in, s) : profile_among<D>(in, s, near)});
+        out.push_back({s, profile(root, v, s)});
         return;
       }
       for (int i = from; i < static_cast<int>(v.size()); ++i) pick[depth] = v[i], rec(i + 1, depth + 1);
@@ -438,7 +441,9 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in, HullDiscs) {
   });
   if (groups.empty()) return out;
   std::set<Index<2>> seen = simplices_of(out);
-  add_cluster_subsets<2>(in, groups, [](int, const std::vector<int>& points) { return points; }, seen, out);
+  add_cluster_subsets<2>(
+      in, groups, [&](int, const std::vector<int>& points, const Index<2>& s) { return profile_among<2>(in, s, points); },
+      seen, out);
   return out;
 }
 
@@ -515,7 +520,12 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs dis
   // the outer side holds no point. A triangle of a planar hull face with
   // another point of the face in its circle needs only to know that the
   // inner side holds some (the apexes behind the face say so).
-  const auto add_groups = [&](Clusters& uf) {
+  // hull_discs: uf groups planar hull facets, and every triple not listed
+  // yet has another point of its face in its circle (a triple with none
+  // lies on an empty circle of the face, so in a group of `spheres`, listed
+  // before): the face's points only tell whether one lies in the open
+  // triangle (no graph holds it then), the apexes bound the pencil.
+  const auto add_groups = [&](Clusters& uf, bool hull_discs) {
     const auto groups = cluster_groups(uf, static_cast<int>(cells.size()), [&](int t, std::set<int>& vs) {
       const auto c = cells[static_cast<std::size_t>(t)];
       for (int i = 0; i < 4; ++i)
@@ -537,6 +547,28 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs dis
         near.insert(near.end(), it->second.begin(), it->second.end());
       return near;
     };
+    const auto profile = [&](int root, const std::vector<int>& points, const Index<3>& s) {
+      if (!hull_discs) return profile_among<3>(in, s, bounding(root, points));
+      const auto simplex = positions(in, s);
+      Profile pr;
+      pr.disc = true;
+      // A point in the open triangle lies in its box (compared exactly).
+      const Eigen::Vector3d lo = simplex[0].cwiseMin(simplex[1]).cwiseMin(simplex[2]);
+      const Eigen::Vector3d hi = simplex[0].cwiseMax(simplex[1]).cwiseMax(simplex[2]);
+      for (const int q : points) {
+        const Eigen::Vector3d& p = in.P[q];
+        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+        if (std::find(s.begin(), s.end(), q) == s.end() && GammaTraits<3>::in_open_triangle(simplex, p)) {
+          pr.blocked = true;
+          return pr;
+        }
+      }
+      const Pencil<3> pencil(simplex);
+      if (const auto it = apexes.find(root); it != apexes.end())
+        for (const int a : it->second) pencil.add(pr, a, in.P[a]);
+      pencil.finish(pr, in.P);
+      return pr;
+    };
     // A hull group of 4 points has two facets but only 4 vertices.
     for (auto& [root, vs] : groups)
       if (vs.size() == 4) {
@@ -546,13 +578,13 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs dis
           for (int j = 0, k = 0; j < 4; ++j)
             if (j != skip) s[k++] = v[j];
           if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
-            out.push_back({s, profile_among<3>(in, s, bounding(root, v))});
+            out.push_back({s, profile(root, v, s)});
         }
       }
-    add_cluster_subsets<3>(in, groups, bounding, seen, out);
+    add_cluster_subsets<3>(in, groups, profile, seen, out);
   };
-  add_groups(spheres);
-  if (discs == HullDiscs::list) add_groups(planes);
+  add_groups(spheres, false);
+  if (discs == HullDiscs::list) add_groups(planes, true);
   return out;
 }
 

@@ -308,7 +308,8 @@ TEST(GammaGraph, CubicLatticeMatchesBruteForce) {
     for (const auto& [c0, c1] : {std::array<double, 2>{-1, 1}, {1, 1}, {0.5, 1}, {-0.3, 0.9}})
       EXPECT_EQ(fast<3>(V, c0, c1), test::brute_gamma<3>(V, c0, c1)) << c0 << " " << c1;
     for (const auto& g : {GammaRange{-1, 1, 0, 1}, GammaRange{-1, 1, -1, 1}, GammaRange{-0.5, 0.5, 0, 1},
-                          GammaRange{-1, 1, 0.5, 1}, GammaRange{-0.9, 1, 0, 0.95}})
+                          GammaRange{-1, 1, 0.5, 1}, GammaRange{-0.9, 1, 0, 0.95}, GammaRange{0, 1, 0, 1},
+                          GammaRange{-1, -0.5, 0, 1}})
       EXPECT_EQ(fast<3>(V, g), test::brute_gamma_range<3>(V, g.c0, g.c1, g.c2, g.c3)) << h;
   }
 }
