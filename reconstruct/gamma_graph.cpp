@@ -517,14 +517,13 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs dis
   // circle likewise: the circle holds no other point of the plane, so a
   // triangle there is first met, on the inner side, by a sphere through
   // the circle that is empty, hence by the apex of a cell behind the face;
-  // the outer side holds no point. A triangle of a planar hull face with
-  // another point of the face in its circle needs only to know that the
-  // inner side holds some (the apexes behind the face say so).
-  // hull_discs: uf groups planar hull facets, and every triple not listed
-  // yet has another point of its face in its circle (a triple with none
-  // lies on an empty circle of the face, so in a group of `spheres`, listed
-  // before): the face's points only tell whether one lies in the open
-  // triangle (no graph holds it then), the apexes bound the pencil.
+  // the outer side holds no point.
+  // hull_discs: uf groups the hull facets of one plane, and every triple
+  // not listed yet has another point of its face strictly inside its circle
+  // (a triple with none lies on an empty circle of the face: a group of
+  // `spheres`, listed before). Such a point is in the open triangle (no
+  // graph holds the triangle) or else makes it `disc`, so the face's points
+  // are asked only the first; the apexes behind the face bound its pencil.
   const auto add_groups = [&](Clusters& uf, bool hull_discs) {
     const auto groups = cluster_groups(uf, static_cast<int>(cells.size()), [&](int t, std::set<int>& vs) {
       const auto c = cells[static_cast<std::size_t>(t)];
