@@ -375,17 +375,26 @@ void add_cluster_subsets(const Input<D>& in, const std::map<int, std::set<int>>&
   }
 }
 
-// Whether to list, in 3D, the triangles of a planar hull face that hold
-// another point of the face inside their circle. Only neighbourhoods with a
-// half-space take them in (balls_empty: t = ±1), and a face of m points has
-// Θ(m³) of them against O(m) others: the 6 faces of a 15×15×15 lattice
-// have 11M, which made γ(0,0) run for minutes. So they are listed only for
-// the queries that can take them in (takes_hull_discs).
-enum class HullDiscs { skip, list };
+// Which degenerate triangles of 3D input a query needs listed (the plane
+// has neither kind). hull_discs: the triangles of a planar hull face that
+// hold another point of the face inside their circle. Only neighbourhoods
+// with a half-space take them in (balls_empty: t = ±1), and a face of m
+// points has Θ(m³) of them against O(m) others: the 6 faces of a
+// 15×15×15 lattice have 11M, which made γ(0,0) run for minutes.
+// sphere_interiors: the triangles of a co-spherical cluster with cluster
+// points on both sides of their plane. Every point of the cluster lies on
+// its empty sphere S, so from both sides the pencil first meets S: lo = hi
+// = t_S, exactly (Pencil::finish), and a union of balls (c1 ≥ 0) holds no
+// point only when both balls are S, t0 = t1, i.e. c0 = -c1. A cluster of
+// m points has Θ(m³) of them and O(m) on its polytope's faces.
+struct Listing {
+  bool hull_discs = true;
+  bool sphere_interiors = true;
+};
 
 // Every simplex with an empty touching ball (c'1 ≥ 0), 2D (no hull discs in
 // the plane).
-std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in, HullDiscs) {
+std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in, Listing) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
   using Fb = CGAL::Triangulation_face_base_with_info_2<int, K>;
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
@@ -447,10 +456,9 @@ std::vector<Candidate<2>> empty_ball_simplices(const Input<2>& in, HullDiscs) {
   return out;
 }
 
-// Every simplex with an empty touching ball (c'1 ≥ 0), 3D. With
-// HullDiscs::skip the triangles of a planar hull face that hold another
-// point of the face inside their circle are left out (see HullDiscs).
-std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs discs) {
+// Every simplex with an empty touching ball (c'1 ≥ 0), 3D, but the kinds
+// `listing` leaves out (see Listing).
+std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, Listing listing) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
   using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K>;
   using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
@@ -568,22 +576,68 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, HullDiscs dis
       pencil.finish(pr, in.P);
       return pr;
     };
-    // A hull group of 4 points has two facets but only 4 vertices.
-    for (auto& [root, vs] : groups)
-      if (vs.size() == 4) {
-        std::vector<int> v(vs.begin(), vs.end());
-        for (int skip = 0; skip < 4; ++skip) {
-          Index<3> s;
+    const auto add_all = [&](const std::map<int, std::set<int>>& some) {
+      // A hull group of 4 points has two facets but only 4 vertices.
+      for (auto& [root, vs] : some)
+        if (vs.size() == 4) {
+          std::vector<int> v(vs.begin(), vs.end());
+          for (int skip = 0; skip < 4; ++skip) {
+            Index<3> s;
+            for (int j = 0, k = 0; j < 4; ++j)
+              if (j != skip) s[k++] = v[j];
+            if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
+              out.push_back({s, profile(root, v, s)});
+          }
+        }
+      add_cluster_subsets<3>(in, some, profile, seen, out);
+    };
+    if (!hull_discs && !listing.sphere_interiors) {
+      // Of a co-spherical cluster only the triangles on its polytope's faces
+      // (see Listing), each face the cluster's boundary facets in one plane
+      // (a convex polytope has one face per plane), its points on one circle.
+      std::map<int, std::vector<std::pair<std::array<K::Point_3, 3>, std::set<int>>>> faces;
+      for (const auto c : cells) {
+        const int root = uf.find(c->info());
+        if (dt.is_infinite(c) || !groups.count(root)) continue;
+        for (int i = 0; i < 4; ++i) {
+          if (uf.find(c->neighbor(i)->info()) == root) continue;
+          std::array<K::Point_3, 3> p;
+          std::array<int, 3> ids;
           for (int j = 0, k = 0; j < 4; ++j)
-            if (j != skip) s[k++] = v[j];
-          if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
-            out.push_back({s, profile(root, v, s)});
+            if (j != i) p[k] = c->vertex(j)->point(), ids[k++] = c->vertex(j)->info();
+          auto& list = faces[root];
+          auto face = std::find_if(list.begin(), list.end(), [&](const auto& f) {
+            return std::all_of(p.begin(), p.end(), [&](const K::Point_3& q) {
+              return CGAL::orientation(f.first[0], f.first[1], f.first[2], q) == CGAL::COPLANAR;
+            });
+          });
+          if (face == list.end()) face = list.insert(list.end(), {p, {}});
+          face->second.insert(ids.begin(), ids.end());
         }
       }
-    add_cluster_subsets<3>(in, groups, profile, seen, out);
+      for (const auto& [root, list] : faces)
+        for (const auto& face : list) {
+          const std::vector<int> v(face.second.begin(), face.second.end());
+          const std::vector<int> cluster(groups.at(root).begin(), groups.at(root).end());
+          for (std::size_t a = 0; a < v.size(); ++a)
+            for (std::size_t b = a + 1; b < v.size(); ++b)
+              for (std::size_t c = b + 1; c < v.size(); ++c) {
+                const Index<3> s{v[a], v[b], v[c]};
+                if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
+                  out.push_back({s, profile(root, cluster, s)});
+              }
+        }
+      // The hull groups (infinite cells on one circle) are planar: all of their triangles.
+      std::map<int, std::set<int>> hull_groups;
+      for (const auto& [root, vs] : groups)
+        if (!faces.count(root)) hull_groups.emplace(root, vs);
+      add_all(hull_groups);
+      return;
+    }
+    add_all(groups);
   };
   add_groups(spheres, false);
-  if (discs == HullDiscs::list) add_groups(planes, true);
+  if (listing.hull_discs) add_groups(planes, true);
   return out;
 }
 
@@ -804,10 +858,10 @@ void for_each_screened(const Input<3>& in, double, Visit&& visit) {
 // All simplices with c'1 ≥ floor and their profiles (exact for c'1 < 0 when
 // they come from the lens path: see gamma_values in the header).
 template <int D>
-std::vector<Candidate<D>> candidates(const Input<D>& in, double floor, HullDiscs discs) {
+std::vector<Candidate<D>> candidates(const Input<D>& in, double floor, Listing listing) {
   std::vector<Candidate<D>> out;
   if (static_cast<int>(in.P.size()) < D) return out;
-  for (auto& c : empty_ball_simplices(in, discs)) {
+  for (auto& c : empty_ball_simplices(in, listing)) {
     const auto cp = largest_empty(c.profile);
     if (cp && (*cp)[1] >= floor) out.push_back(c);
   }
@@ -879,7 +933,7 @@ std::vector<Index<D>> negative_graph(const Input<D>& in, double c0, double c1) {
   std::vector<Index<D>> rows;
   if (static_cast<int>(in.P.size()) < D) return rows;
   std::vector<Index<D>> with_ball;
-  for (const auto& c : empty_ball_simplices(in, HullDiscs::skip)) {  // |c0| ≤ |c1| < 1: no half-space
+  for (const auto& c : empty_ball_simplices(in, Listing{false, true})) {  // |c0| ≤ |c1| < 1: no half-space
     if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);
     Index<D> key = c.s;
     std::sort(key.begin(), key.end());
@@ -908,9 +962,10 @@ Eigen::Matrix<int, Eigen::Dynamic, D> fixed_graph(const Eigen::Matrix<double, Ei
   const Input<D> in = prepare<D>(V);
   if (c1 < 0 && c1 > -1) return to_matrix(in, negative_graph(in, c0, c1));
   std::vector<Index<D>> rows;
-  // A hull disc needs both balls half-spaces (c1 ≥ 0) or one (c1 < 0).
-  const bool discs = (c1 == 1 && std::abs(c0) == 1) || c1 == -1;
-  for (const auto& c : candidates(in, std::min(c1, 0.0), discs ? HullDiscs::list : HullDiscs::skip))
+  // A hull disc needs both balls half-spaces (c1 ≥ 0) or one (c1 < 0); a
+  // sphere interior a lens (c1 < 0) or both balls the same, t0 = t1.
+  const Listing listing{(c1 == 1 && std::abs(c0) == 1) || c1 == -1, c1 < 0 || c0 == -c1};
+  for (const auto& c : candidates(in, std::min(c1, 0.0), listing))
     if (neighborhood_empty(c.profile, c0, c1)) rows.push_back(c.s);
   return to_matrix(in, rows);
 }
@@ -927,7 +982,7 @@ Eigen::Matrix<int, Eigen::Dynamic, D> range_graph(const Eigen::Matrix<double, Ei
   std::vector<Index<D>> rows;
   // A hull disc's (c'0, c'1) is (1,1), (-1,1) or (·,-1) (largest_empty).
   const bool discs = (g.c3 == 1 && (g.c0 == -1 || g.c1 == 1)) || g.c2 == -1;
-  for (const auto& c : candidates(in, std::min(g.c2, 0.0), discs ? HullDiscs::list : HullDiscs::skip)) {
+  for (const auto& c : candidates(in, std::min(g.c2, 0.0), Listing{discs, true})) {
     const auto cp = largest_empty(c.profile);
     if (cp && (*cp)[0] >= g.c0 && (*cp)[0] <= g.c1 && (*cp)[1] >= g.c2 && (*cp)[1] <= g.c3) rows.push_back(c.s);
   }
@@ -940,7 +995,7 @@ void values(const Eigen::Matrix<double, Eigen::Dynamic, D>& V, double floor, Eig
   check_parameter(floor, "floor");
   const Input<D> in = prepare<D>(V);
   std::vector<std::pair<Index<D>, Eigen::Vector2d>> rows;
-  for (const auto& c : candidates(in, floor, HullDiscs::list)) {
+  for (const auto& c : candidates(in, floor, Listing{})) {
     Index<D> s = c.s;
     for (int& v : s) v = in.id[v];
     rows.emplace_back(s, *largest_empty(c.profile));
@@ -972,7 +1027,7 @@ void gamma_pencil_bounds(const Eigen::MatrixX2d& V, Eigen::MatrixX2i& E, Eigen::
   const Input<2> in = prepare<2>(V);
   std::vector<std::pair<Index<2>, Eigen::Vector2d>> rows;
   if (in.P.size() >= 2)
-    for (const auto& c : empty_ball_simplices(in, HullDiscs::skip)) {
+    for (const auto& c : empty_ball_simplices(in, Listing{})) {
       const auto cp = largest_empty(c.profile);
       if (!cp || (*cp)[1] < 0) continue;
       rows.push_back({{in.id[c.s[0]], in.id[c.s[1]]}, Eigen::Vector2d(c.profile.lo, c.profile.hi)});

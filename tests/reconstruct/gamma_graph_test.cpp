@@ -305,13 +305,37 @@ TEST(GammaGraph, CubicLatticeMatchesBruteForce) {
     // half-space (γ(±1,1), ranges reaching c'0 = -1 and c'1 = 1) take in
     // the triangles with another point of the face in their circle, the
     // others leave them out.
-    for (const auto& [c0, c1] : {std::array<double, 2>{-1, 1}, {1, 1}, {0.5, 1}, {-0.3, 0.9}})
+    // The unit cubes are co-spherical clusters: γ(0, 0.17) and γ(-0.1, 0.17)
+    // take in both diagonals of their square faces (a face's pencil is
+    // empty up to t ≈ ±0.18), which only the cluster's faces list there.
+    for (const auto& [c0, c1] :
+         {std::array<double, 2>{-1, 1}, {1, 1}, {0.5, 1}, {-0.3, 0.9}, {0, 0.17}, {-0.1, 0.17}})
       EXPECT_EQ(fast<3>(V, c0, c1), test::brute_gamma<3>(V, c0, c1)) << c0 << " " << c1;
     for (const auto& g : {GammaRange{-1, 1, 0, 1}, GammaRange{-1, 1, -1, 1}, GammaRange{-0.5, 0.5, 0, 1},
                           GammaRange{-1, 1, 0.5, 1}, GammaRange{-0.9, 1, 0, 0.95}, GammaRange{0, 1, 0, 1},
                           GammaRange{-1, -0.5, 0, 1}})
       EXPECT_EQ(fast<3>(V, g), test::brute_gamma_range<3>(V, g.c0, g.c1, g.c2, g.c3)) << h;
   }
+}
+
+// Integer points on one sphere (x² + y² + z² = 9: 30 points) and a few
+// outside it: one co-spherical cluster, whose triangles with cluster points
+// on both sides of their plane are left out of the fixed queries with
+// c0 ≠ -c1, c1 ≥ 0 (see gamma_graph.cpp, Listing) and listed for the others.
+TEST(GammaGraph, CosphericalClusterMatchesBruteForce) {
+  std::vector<Eigen::RowVector3d> rows;
+  for (int x = -3; x <= 3; ++x)
+    for (int y = -3; y <= 3; ++y)
+      for (int z = -3; z <= 3; ++z)
+        if (x * x + y * y + z * z == 9) rows.emplace_back(x, y, z);
+  for (const auto& [x, y, z] : {std::array<double, 3>{4, 1, 0.5}, {-1, -4.5, 2}, {0.5, 2, -5}}) rows.emplace_back(x, y, z);
+  Eigen::MatrixX3d V(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) V.row(static_cast<Eigen::Index>(i)) = rows[i];
+  ASSERT_EQ(V.rows(), 33);
+  for (double c1 : kGrid)
+    for (double c0 : kGrid)
+      if (std::abs(c0) <= std::abs(c1)) EXPECT_EQ(fast<3>(V, c0, c1), test::brute_gamma<3>(V, c0, c1)) << c0 << " " << c1;
+  EXPECT_EQ(fast<3>(V, GammaRange{-1, 1, 0, 1}), test::brute_gamma_range<3>(V, -1, 1, 0, 1));
 }
 
 Eigen::MatrixX3d cube() {
