@@ -81,13 +81,8 @@ struct Args {
   std::vector<std::string> files;
 };
 
-std::vector<Eigen::Index> arrival_order(const Eigen::MatrixX3d& P, const Args& a) {
-  if (a.profiles) {  // the points are made in arrival order
-    std::vector<Eigen::Index> order(static_cast<std::size_t>(P.rows()));
-    std::iota(order.begin(), order.end(), Eigen::Index{0});
-    return order;
-  }
-  return a.scan ? sim::turntable_order(P) : sim::shuffled_order(P.rows(), 11);
+std::vector<Eigen::Index> arrival_order(const Eigen::MatrixX3d& P, bool scan) {
+  return scan ? sim::turntable_order(P) : sim::shuffled_order(P.rows(), 11);
 }
 
 // A turntable laser's points: one profile per batch, the object's section by
@@ -143,7 +138,12 @@ Eigen::MatrixX3d shape_points(const Args& a) {
 
 int timing(const Args& a) {
   const Eigen::MatrixX3d P = shape_points(a);
-  const std::vector<Eigen::Index> order = arrival_order(P, a);
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(P.rows()));
+  if (a.profiles) {
+    std::iota(order.begin(), order.end(), Eigen::Index{0});  // the profiles are made in arrival order
+  } else {
+    order = arrival_order(P, a.scan);
+  }
   const std::size_t n = order.size();
   std::printf("%s (subdivision %d, noise %g), %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), a.subdivision,
               a.noise, n, a.batches, a.profiles ? "profiles" : a.scan ? "scan" : "random", a.margin);
@@ -192,10 +192,7 @@ int recall(const Args& a) {
     std::size_t wide = 0;
     bool valid = true;
     for (const bool scan : {true, false}) {
-      Args order_args = a;
-      order_args.scan = scan;
-      order_args.profiles = false;
-      const std::vector<Eigen::Index> order = arrival_order(P, order_args);
+      const std::vector<Eigen::Index> order = arrival_order(P, scan);
       IncrementalConstriction inc(surface_defaults(), a.margin);
       for (int b = 0; b < a.batches; ++b)
         inc.add_batch(sim::ordered_rows(P, order, batch_end(order.size(), a.batches, b - 1), batch_end(order.size(), a.batches, b)));

@@ -337,8 +337,8 @@ std::set<Index<D>> simplices_of(const std::vector<Candidate<D>>& out) {
 }
 
 // All k-subsets of each cluster's vertex set that are not Delaunay simplices
-// (degenerate input only), each profiled against the points `bounding`
-// gives for its cluster, or against every point when it gives none.
+// (degenerate input only), each profiled by `profile` (given the cluster's
+// key and points), which needs only the points that bound it:
 // In the plane the cluster's own points bound such a chord: they lie on the
 // empty circle C on both sides of it (a chord with them all on one side is
 // a side of the cluster's polygon, a Delaunay edge), every other point lies
@@ -576,9 +576,10 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, Listing listi
       pencil.finish(pr, in.P);
       return pr;
     };
-    const auto add_all = [&](const std::map<int, std::set<int>>& some) {
-      // A hull group of 4 points has two facets but only 4 vertices.
-      for (auto& [root, vs] : some)
+    using Profiler = std::function<Profile(int key, const std::vector<int>& points, const Index<3>& s)>;
+    const auto add_all = [&](const std::map<int, std::set<int>>& some, const Profiler& profiler) {
+      // A group of 4 points in one plane has two facets but only 4 vertices.
+      for (auto& [key, vs] : some)
         if (vs.size() == 4) {
           std::vector<int> v(vs.begin(), vs.end());
           for (int skip = 0; skip < 4; ++skip) {
@@ -586,10 +587,10 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, Listing listi
             for (int j = 0, k = 0; j < 4; ++j)
               if (j != skip) s[k++] = v[j];
             if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
-              out.push_back({s, profile(root, v, s)});
+              out.push_back({s, profiler(key, v, s)});
           }
         }
-      add_cluster_subsets<3>(in, some, profile, seen, out);
+      add_cluster_subsets<3>(in, some, profiler, seen, out);
     };
     if (!hull_discs && !listing.sphere_interiors) {
       // Of a co-spherical cluster only the triangles on its polytope's faces
@@ -615,26 +616,29 @@ std::vector<Candidate<3>> empty_ball_simplices(const Input<3>& in, Listing listi
           face->second.insert(ids.begin(), ids.end());
         }
       }
-      for (const auto& [root, list] : faces)
+      // Each face listed as a group of its own, profiled against its cluster.
+      std::map<int, std::set<int>> face_groups;
+      std::vector<int> cluster_of;  // by face key
+      std::map<int, std::vector<int>> cluster_points;
+      for (const auto& [root, list] : faces) {
+        cluster_points[root].assign(groups.at(root).begin(), groups.at(root).end());
         for (const auto& face : list) {
-          const std::vector<int> v(face.second.begin(), face.second.end());
-          const std::vector<int> cluster(groups.at(root).begin(), groups.at(root).end());
-          for (std::size_t a = 0; a < v.size(); ++a)
-            for (std::size_t b = a + 1; b < v.size(); ++b)
-              for (std::size_t c = b + 1; c < v.size(); ++c) {
-                const Index<3> s{v[a], v[b], v[c]};
-                if (GammaTraits<3>::is_simplex(positions(in, s)) && seen.insert(s).second)
-                  out.push_back({s, profile(root, cluster, s)});
-              }
+          face_groups.emplace(static_cast<int>(cluster_of.size()), face.second);
+          cluster_of.push_back(root);
         }
+      }
+      add_all(face_groups, [&](int key, const std::vector<int>&, const Index<3>& s) {
+        const int root = cluster_of[static_cast<std::size_t>(key)];
+        return profile(root, cluster_points.at(root), s);
+      });
       // The hull groups (infinite cells on one circle) are planar: all of their triangles.
       std::map<int, std::set<int>> hull_groups;
       for (const auto& [root, vs] : groups)
         if (!faces.count(root)) hull_groups.emplace(root, vs);
-      add_all(hull_groups);
+      add_all(hull_groups, profile);
       return;
     }
-    add_all(groups);
+    add_all(groups, profile);
   };
   add_groups(spheres, false);
   if (listing.hull_discs) add_groups(planes, true);

@@ -334,7 +334,9 @@ TEST(GammaGraph, CosphericalClusterMatchesBruteForce) {
   ASSERT_EQ(V.rows(), 33);
   for (double c1 : kGrid)
     for (double c0 : kGrid)
-      if (std::abs(c0) <= std::abs(c1)) EXPECT_EQ(fast<3>(V, c0, c1), test::brute_gamma<3>(V, c0, c1)) << c0 << " " << c1;
+      if (std::abs(c0) <= std::abs(c1)) {
+        EXPECT_EQ(fast<3>(V, c0, c1), test::brute_gamma<3>(V, c0, c1)) << c0 << " " << c1;
+      }
   EXPECT_EQ(fast<3>(V, GammaRange{-1, 1, 0, 1}), test::brute_gamma_range<3>(V, -1, 1, 0, 1));
 }
 
