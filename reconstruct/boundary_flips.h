@@ -35,7 +35,9 @@ enum class FlipCriterion {
 ///           ellipsoid untouched while caps over concavities still go
 /// cells     optional: the Delaunay cells over `points` from which `boundary`
 ///           was constricted (and perhaps augmented: its triangles that are
-///           no faces of them are found and kept away from)
+///           no faces of them are found and kept away from; with `surface`
+///           given, that surface was built from the cells' boundary, and the
+///           triangles of its later edits are the foreign ones)
 /// An edge (a, b) between (a, b, c) and (b, a, d) becomes (c, d) when that
 /// lowers the criterion (area: by min_gain), (c, d) is not already an edge, the tetrahedron
 /// (a, b, c, d) holds no other point, and the new triangles meet the surface

@@ -248,7 +248,12 @@ class PointTree {
     }
     return true;
   }
-  void build(int node, int begin, int end);
+  struct Item {
+    Eigen::Vector3d position;
+    int id;
+  };
+  static constexpr int kParallelPoints = 8192;
+  void build(std::vector<Item>& items, int node, int begin, int end);
   std::vector<int> order_;                  // point ids, grouped by leaf
   std::vector<Eigen::Vector3d> position_;   // their positions, same order
   std::vector<Node> nodes_;                 // implicit binary tree: children 2i+1, 2i+2
@@ -305,6 +310,9 @@ class BoundarySurface {
   const Triangle& face(int id) const { return faces_[static_cast<std::size_t>(id)]; }
   bool alive(int id) const { return alive_[static_cast<std::size_t>(id)] != 0; }
   std::size_t face_slots() const { return faces_.size(); }
+  /// The faces it was built with: ids [0, built_faces()) are the rows of
+  /// `boundary`, later ids come from edits.
+  std::size_t built_faces() const { return built_faces_; }
   /// The alive faces' count.
   std::size_t face_count() const { return alive_faces_; }
   /// Ids of faces that used vertex v at some point (check alive()).
@@ -351,6 +359,7 @@ class BoundarySurface {
   std::vector<Triangle> faces_;
   std::vector<char> alive_;
   std::size_t alive_faces_ = 0;
+  std::size_t built_faces_ = 0;
   std::vector<std::vector<int>> faces_at_;
   std::vector<char> on_boundary_;
 };
