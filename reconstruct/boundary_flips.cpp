@@ -78,27 +78,26 @@ Candidates candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F,
   return out;
 }
 
-// Which flips need no exact test (see flip_boundary): every triangle of the
-// surface is a face of the Delaunay complex except the foreign ones — those
-// augmentation carved (§5.4: its tetrahedra are no cells) and those of the
-// flips whose tetrahedron was not a cell. A flip whose tetrahedron is a cell
-// whose box misses every foreign box adds or removes that cell: its new
-// triangles are faces of the complex and meet the other cell faces only in
-// shared vertices and edges, no foreign triangle comes near, and a Delaunay
-// cell holds no point. The cells around each point by counting sort (about
-// 25 per point).
+// Which flips need fewer exact tests (see flip_boundary): every triangle of
+// the surface is a face of the Delaunay complex except the foreign ones —
+// those augmentation carved (§5.4: its tetrahedra are no cells) and those of
+// the flips whose tetrahedron was not a cell. A flip whose tetrahedron is a
+// cell adds or removes that cell: a Delaunay cell is not flat and holds no
+// point, and its new triangles are faces of the complex, which meet the
+// other cell faces only in shared vertices and edges — only a foreign
+// triangle can cut them, and only those are tested. The cells around each
+// point by counting sort (about 25 per point).
 class CellFlips {
  public:
   CellFlips(const DelaunayComplex<3>& dt, const CellsAround& around, BoxGrid foreign)
       : dt_(dt), around_(around), foreign_(std::move(foreign)) {}
-  /// Flipping (a, b) to (c, d) adds or removes a cell far from foreign flips.
-  bool toggles(int a, int b, int c, int d) const {
-    if (!is_cell(a, b, c, d)) return false;
-    Eigen::AlignedBox3d box;
-    for (const int v : {a, b, c, d}) box.extend(dt_.points.row(v).transpose());
-    return foreign_.visit(box, [](int) { return false; });
+  bool is_cell(int a, int b, int c, int d) const { return cell_around(a, {b, c, d}); }
+  /// The foreign faces, by the surface's face ids (some removed since).
+  const BoxGrid& foreign() const { return foreign_; }
+  void add_foreign(const BoundarySurface& surface, int f) {
+    const Triangle& t = surface.face(f);
+    foreign_.insert(f, surface.box({t[0], t[1], t[2]}));
   }
-  void add_foreign(const Eigen::AlignedBox3d& box) { foreign_.insert(foreign_count_++, box); }
   /// The surface's triangles that are no faces of the complex become
   /// foreign. Those it was built with are looked up among the cells, unless
   /// `built_from_cells` (it was built from the cells' boundary); those of
@@ -111,13 +110,12 @@ class CellFlips {
       if (!surface.alive(static_cast<int>(f))) continue;
       const Triangle& t = surface.face(static_cast<int>(f));
       const bool edited = f >= surface.built_faces();
-      if (edited || (!built_from_cells && !is_face(t[0], t[1], t[2]))) add_foreign(surface.box({t[0], t[1], t[2]}));
+      if (edited || (!built_from_cells && !is_face(t[0], t[1], t[2]))) add_foreign(surface, static_cast<int>(f));
     }
   }
 
  private:
   bool is_face(int a, int b, int c) const { return cell_around(a, {b, c}); }
-  bool is_cell(int a, int b, int c, int d) const { return cell_around(a, {b, c, d}); }
   // Whether a cell around point a holds every point of `others`.
   bool cell_around(int a, std::initializer_list<int> others) const {
     for (const int cell : around_[static_cast<std::size_t>(a)]) {
@@ -130,7 +128,6 @@ class CellFlips {
   const DelaunayComplex<3>& dt_;
   const CellsAround& around_;
   BoxGrid foreign_;
-  int foreign_count_ = 0;
 };
 
 // Flips by one criterion, largest gain first (area: caps over concavities go
@@ -166,16 +163,21 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
     if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
     if (!(gain_of(a, b) > 0)) continue;
     const Triangle g1{a, d, c}, g2{d, b, c};
-    if (!cells || !cells->toggles(a, b, c, d)) {
+    const bool cell = cells && cells->is_cell(a, b, c, d);
+    if (cell) {
+      if (surface.meets_faces({g1, g2}, {f1, f2}, cells->foreign())) continue;
+    } else {
       if (CGAL::orientation(surface.exact(a), surface.exact(b), surface.exact(c), surface.exact(d)) == CGAL::COPLANAR)
         continue;
       if (surface.point_in_tetrahedron(a, b, c, d) || surface.meets_surface({g1, g2}, {f1, f2})) continue;
-      if (cells) cells->add_foreign(surface.box({a, b, c, d}));
     }
     surface.remove_face(f1);
     surface.remove_face(f2);
-    surface.add_face(g1);
-    surface.add_face(g2);
+    const int h1 = surface.add_face(g1), h2 = surface.add_face(g2);
+    if (cells && !cell) {
+      cells->add_foreign(surface, h1);
+      cells->add_foreign(surface, h2);
+    }
     ++flips;
     for (const auto& [u, v] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) {
       const double g = gain_of(std::min(u, v), std::max(u, v));

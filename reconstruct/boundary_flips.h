@@ -42,11 +42,12 @@ enum class FlipCriterion {
 /// lowers the criterion (area: by min_gain), (c, d) is not already an edge, the tetrahedron
 /// (a, b, c, d) holds no other point, and the new triangles meet the surface
 /// only in shared vertices and edges (exact tests). With `cells`, a flip whose
-/// tetrahedron is one of them, away from every triangle that is no cell face
-/// (augmentation's, and those of earlier flips whose tetrahedron was no
-/// cell), needs no test: its new triangles are faces of the Delaunay complex,
-/// which meet the other cell faces properly, and a Delaunay cell holds no
-/// point (the same flips as with every flip tested, faster: docs/design.md).
+/// tetrahedron is one of them is tested only against the triangles that are
+/// no cell faces (augmentation's, and those of earlier flips whose
+/// tetrahedron was no cell): its new triangles are faces of the Delaunay
+/// complex, which meet the other cell faces properly, and a Delaunay cell is
+/// not flat and holds no point (the same flips as with every flip tested,
+/// faster: docs/design.md).
 /// surface  optional: the spatial index of `boundary` over `points`, when an
 ///          earlier step (augmentation) built one, flipped in place instead
 ///          of a new one; when empty, it receives the index the flips built

@@ -235,7 +235,8 @@ struct PlaneFilter {
 
 }  // namespace
 
-bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const {
+bool BoundarySurface::meets_faces(const std::vector<Triangle>& fresh, std::initializer_list<int> except,
+                                  const BoxGrid& faces) const {
   Eigen::AlignedBox3d region;
   std::vector<Eigen::AlignedBox3d> boxes;
   std::vector<PlaneFilter> planes;
@@ -253,7 +254,7 @@ bool BoundarySurface::meets_surface(const std::vector<Triangle>& fresh, std::ini
       if (std::find(y.begin(), y.end(), v) == y.end()) corners[n++] = point(v);
     return std::span<const Eigen::Vector3d>(corners.data(), n);
   };
-  return !faces_grid_.visit(region, [&](int g, const Eigen::AlignedBox3d& other_box) {
+  return !faces.visit(region, [&](int g, const Eigen::AlignedBox3d& other_box) {
     // The box as filed first: near a long triangle most faces lie clearly
     // on one side of its plane, told without reading the face (on a
     // chalice of 100k points, 64% of the pairs of boxes that met).

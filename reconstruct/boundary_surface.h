@@ -335,7 +335,13 @@ class BoundarySurface {
   bool point_in_tetrahedron(int a, int b, int c, int d) const;
   /// Exact: some alive face other than those in `except` meets one of
   /// `fresh` improperly.
-  bool meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const;
+  bool meets_surface(const std::vector<Triangle>& fresh, std::initializer_list<int> except) const {
+    return meets_faces(fresh, except, faces_grid_);
+  }
+  /// The same among the faces filed in `faces` (ids of this surface's faces
+  /// by their boxes, dead ones allowed): where only some faces can cut the
+  /// fresh ones (see flip_boundary).
+  bool meets_faces(const std::vector<Triangle>& fresh, std::initializer_list<int> except, const BoxGrid& faces) const;
   /// f(q, position of q) for the points q within distance r of c (and
   /// perhaps a few on its rim), nearest first by tree node; f may return
   /// false to stop early.
