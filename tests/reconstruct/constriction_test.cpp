@@ -504,7 +504,8 @@ TEST(Constriction3, CellFlipsKeepTheInteriorAndRecoverADelaunayMesh) {
 }
 
 // A flip that adds a Delaunay cell to the solid constriction left, or takes
-// one away, skips the exact tests (it cannot fail them): with the cells given
+// one away, skips the exact tests (it cannot fail them) but the one against
+// the triangles that are no cell faces: with the cells given
 // the flips are the same, one by one, as with every flip tested — on real
 // meshes (area flips, and Delaunay flips after them), on a random sample of
 // an ellipsoid, where nearly every Delaunay flip is a cell's, and on real
@@ -529,7 +530,7 @@ TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
     }
   }
   // After augmentation carved (§5.4), its triangles are no cell faces: flips
-  // near them take the tests, the others still skip them.
+  // near them are tested against them, the others skip the tests.
   for (const std::string name : {"oblong", "homer", "bull"}) {
     const Eigen::MatrixX3d P = io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions;
     ReconstructionOptions no_flips = surface_defaults();
