@@ -316,7 +316,8 @@ UnfoldStatistics unfold(BoundarySurface& surface, const Eigen::MatrixX3d& P, Eig
   for (const auto& [a, b] : folds) parent[static_cast<std::size_t>(root(rank(a)))] = root(rank(b));
   for (std::size_t i = 0; i < ends.size(); ++i)
     for (const int f : surface.faces_at(ends[i]))
-      for (const int w : surface.face(f))
+      if (surface.alive(f))
+        for (const int w : surface.face(f))
         if (const int j = rank(w); j >= 0) parent[static_cast<std::size_t>(root(static_cast<int>(i)))] = root(j);
   std::vector<std::vector<int>> groups(ends.size());
   for (std::size_t i = 0; i < ends.size(); ++i) groups[static_cast<std::size_t>(root(static_cast<int>(i)))].push_back(ends[i]);
