@@ -40,40 +40,35 @@ BoxGrid surface_grid(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces) {
   return BoxGrid(bounds(P), cell_size(P, faces));
 }
 
-PointTree::PointTree(const Eigen::MatrixX3d& P) {
-  std::vector<Item> items(static_cast<std::size_t>(P.rows()));
-  for (std::size_t i = 0; i < items.size(); ++i) items[i] = {P.row(static_cast<Eigen::Index>(i)).transpose(), static_cast<int>(i)};
+PointTree::PointTree(const Eigen::MatrixX3d& P) : items_(static_cast<std::size_t>(P.rows())) {
+  for (std::size_t i = 0; i < items_.size(); ++i)
+    items_[i] = {P.row(static_cast<Eigen::Index>(i)).transpose(), static_cast<int>(i)};
   // A balanced split at the middle index needs fewer than 4n/kLeaf nodes.
-  nodes_.resize(std::max<std::size_t>(1, 4 * items.size() / kLeaf + 4));
-  if (!items.empty()) build(items, 0, 0, static_cast<int>(items.size()));
-  order_.resize(items.size());
-  position_.resize(items.size());
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    order_[k] = items[k].id;
-    position_[k] = items[k].position;
-  }
+  nodes_.resize(std::max<std::size_t>(1, 4 * items_.size() / kLeaf + 4));
+  if (!items_.empty()) build(0, 0, static_cast<int>(items_.size()));
 }
 
 // The points are partitioned as (position, id) pairs, not as ids into the
 // positions: the selection then reads memory in order (on bunny00's 35k
 // points the build fell from 8 to 3 ms, and augmentation pays it in full
-// when a handful of points is left inside). The two halves of a large node
-// are built on both cores; they own disjoint ranges and nodes, so the tree
-// is the same as from one.
-void PointTree::build(std::vector<Item>& items, int node, int begin, int end) {
+// when a handful of points is left inside), and the pairs are the tree's
+// leaves as they are. The two halves of a large node are built on both
+// cores; they own disjoint ranges and nodes, so the tree is the same as
+// from one.
+void PointTree::build(int node, int begin, int end) {
   Node& n = nodes_[static_cast<std::size_t>(node)];
   n.begin = begin;
   n.end = end;
   n.box.setEmpty();
-  for (int k = begin; k < end; ++k) n.box.extend(items[static_cast<std::size_t>(k)].position);
+  for (int k = begin; k < end; ++k) n.box.extend(items_[static_cast<std::size_t>(k)].position);
   if (end - begin <= kLeaf) return;
   int axis = 0;
   n.box.sizes().maxCoeff(&axis);
   const int mid = begin + (end - begin) / 2;
-  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+  std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
                    [axis](const Item& a, const Item& b) { return a.position[axis] < b.position[axis]; });
-  const auto left = [&] { build(items, 2 * node + 1, begin, mid); };
-  const auto right = [&] { build(items, 2 * node + 2, mid, end); };
+  const auto left = [&] { build(2 * node + 1, begin, mid); };
+  const auto right = [&] { build(2 * node + 2, mid, end); };
   if (end - begin >= kParallelPoints) {
     tbb::parallel_invoke(left, right);
   } else {

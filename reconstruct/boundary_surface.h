@@ -226,7 +226,7 @@ class PointTree {
   // accepts, until f returns false.
   template <typename Reaches, typename Holds, typename First, typename F>
   bool walk(Reaches&& reaches, Holds&& holds, First&& first, F&& f) const {
-    if (order_.empty()) return true;
+    if (items_.empty()) return true;
     int stack[64];
     int top = 0;
     stack[top++] = 0;
@@ -236,8 +236,8 @@ class PointTree {
       if (!reaches(n.box)) continue;
       if (n.end - n.begin <= kLeaf) {
         for (int k = n.begin; k < n.end; ++k)
-          if (const Eigen::Vector3d& p = position_[static_cast<std::size_t>(k)];
-              holds(p) && !f(order_[static_cast<std::size_t>(k)], p))
+          if (const Item& item = items_[static_cast<std::size_t>(k)];
+              holds(item.position) && !f(item.id, item.position))
             return false;
         continue;
       }
@@ -253,9 +253,8 @@ class PointTree {
     int id;
   };
   static constexpr int kParallelPoints = 8192;
-  void build(std::vector<Item>& items, int node, int begin, int end);
-  std::vector<int> order_;                  // point ids, grouped by leaf
-  std::vector<Eigen::Vector3d> position_;   // their positions, same order
+  void build(int node, int begin, int end);
+  std::vector<Item> items_;                 // the points, grouped by leaf
   std::vector<Node> nodes_;                 // implicit binary tree: children 2i+1, 2i+2
 };
 
