@@ -13,9 +13,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <csignal>
 #include <fcntl.h>
 #include <fstream>
+#include <mutex>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -25,9 +27,43 @@ namespace {
 
 using namespace std::chrono_literals;
 
+// Virtual time that a test can stop: while held, a sleep waits until the
+// test lets go. The turntable sleeps between its steps outside its lock, so
+// a thread held there leaves the lock free for another thread's shut_down(),
+// which then lands between two steps for certain, however the scheduler runs
+// the threads.
+class HoldableClock final : public Clock {
+ public:
+  Timestamp now() const override { return time_.now(); }
+  void sleep_until(Timestamp when) override {
+    {
+      std::unique_lock lock(mutex_);
+      released_.wait(lock, [&] { return !held_; });
+    }
+    time_.sleep_until(when);
+  }
+  void hold() {
+    std::lock_guard lock(mutex_);
+    held_ = true;
+  }
+  void release() {
+    {
+      std::lock_guard lock(mutex_);
+      held_ = false;
+    }
+    released_.notify_all();
+  }
+
+ private:
+  sim::VirtualClock time_;
+  std::mutex mutex_;
+  std::condition_variable released_;
+  bool held_ = false;
+};
+
 // Laser on line 0, stepper STEP/DIR/EN on 1..3.
 struct Station {
-  sim::VirtualClock clock;
+  HoldableClock clock;
   sim::SimGpioChip chip;
   Laser laser;
   StepperTurntable table;
@@ -163,17 +199,24 @@ TEST(SafeState, ShutDownFromAnotherThreadStopsAMoveAtItsNextStep) {
   Station station;
   TransitionLog log;
   log.attach(station.chip);
+  // At the 100th step the moving thread is held in its next sleep until the
+  // other thread has shut everything down: the move cannot run to its end
+  // first, however late that thread is scheduled.
   std::atomic<int> edges{0};
-  station.chip.on_transition([&](const sim::Transition& t) { edges += t.line == 1 && t.level; });
+  station.chip.on_transition([&](const sim::Transition& t) {
+    if (t.line == 1 && t.level && ++edges == 100) station.clock.hold();
+  });
   std::thread safe_state([&] {
     while (edges.load() < 100) std::this_thread::yield();
     station.laser.shut_down();
     station.table.shut_down();
+    station.clock.release();
   });
   station.laser.set(true);
   test::expect_error<DeviceError>([&] { station.table.rotate_by(36000.0); }, {"stopped by the safe state"});
   safe_state.join();
   EXPECT_LT(station.table.position(), 320000) << "the move ended early";
+  EXPECT_EQ(station.table.position(), 100) << "at the step after the shut-down";
   EXPECT_GE(station.table.position(), 100);
   std::lock_guard lock(log.mutex);
   expect_nothing_active_after_off(log.transitions, 3, {1, 3});
