@@ -179,7 +179,7 @@ class BoxGrid {
 };
 
 /// An empty grid over the bounding box of P for the triangles `faces` (a
-/// closed surface through P), about two points per cell (the one
+/// closed surface through P), some 32 triangles per cell (the one
 /// BoundarySurface files its faces in).
 BoxGrid surface_grid(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces);
 
