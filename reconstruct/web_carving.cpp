@@ -59,7 +59,7 @@ class WebCarver {
         if (!add_pillars(members)) break;
       }
     }
-    if (!connected()) {  // never seen; the checks above are local
+    if (!carved.empty() && !connected()) {  // never seen; the checks above are local
       for (const int c : carved) kept_[static_cast<std::size_t>(c)] = 1;
       return 0;
     }
