@@ -62,7 +62,9 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P);
 DelaunayComplex<2> delaunay_complex(const Eigen::MatrixX2d& P, std::vector<Eigen::Index>& first,
                                     std::vector<Eigen::Index>& map, double scale = 1.0);
 
-/// 3D: the complex with its points numbered in spatial order, as above.
+/// 3D: the complex with its points numbered in spatial order, as above, and
+/// its cells by their last point in that order (neighbours in space are
+/// mostly near in memory too).
 /// rows  (output) per point of the complex, the row of P it is: one row per
 ///       distinct value (of a repeated row, whichever copy CGAL met first;
 ///       the others appear nowhere)
