@@ -202,10 +202,10 @@ class CellToggles {
   // the cells in storage order (by their last point, along the insertion's
   // Hilbert curve: nearby cells are near in memory) makes each flip the
   // rule allows as it is met (Lawson's order rather than the largest excess
-  // first: no queue of gains, and the walks stay local). A toggle changes which faces of its four neighbours are on
-  // the boundary, and takes (a, b) off it, which a cell around (a, b) may
-  // have waited for; those cells go on a stack and are tried at once, while
-  // they are still in the caches. So no flip is left at the end, unless 8
+  // first: no queue of gains, and the walks stay local). A toggle changes
+  // which faces of its four neighbours are on the boundary, and takes (a, b)
+  // off it, which a cell around (a, b) may have waited for; those cells go
+  // on a stack and are tried at once, while they are still in the caches. So no flip is left at the end, unless 8
   // flips per point were made.
   std::size_t run() {
     // 4 flips per boundary triangle: a closed genus-0 surface through at

@@ -318,7 +318,7 @@ UnfoldStatistics unfold(BoundarySurface& surface, const Eigen::MatrixX3d& P, Eig
     for (const int f : surface.faces_at(ends[i]))
       if (surface.alive(f))
         for (const int w : surface.face(f))
-        if (const int j = rank(w); j >= 0) parent[static_cast<std::size_t>(root(static_cast<int>(i)))] = root(j);
+          if (const int j = rank(w); j >= 0) parent[static_cast<std::size_t>(root(static_cast<int>(i)))] = root(j);
   std::vector<std::vector<int>> groups(ends.size());
   for (std::size_t i = 0; i < ends.size(); ++i) groups[static_cast<std::size_t>(root(static_cast<int>(i)))].push_back(ends[i]);
 
