@@ -62,19 +62,24 @@ double flip_gain(FlipCriterion criterion, const Eigen::Vector3d& a, const Eigen:
 
 // Edges (a < b) worth a flip by area and, when `delaunay`, by the Delaunay
 // rule, found in one pass over the face list alone, so that a surface with
-// none costs two linear passes and no spatial index.
+// none costs no spatial index.
 struct Candidates {
   std::vector<std::pair<int, int>> by_area, by_delaunay;
 };
 Candidates candidate_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, bool delaunay, double min_gain) {
-  Candidates out;
-  for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) {
+  constexpr unsigned kByArea = 1, kByDelaunay = 2;
+  const std::vector<MarkedEdge> marked = select_edges(P.rows(), F, [&](int lo, int hi, int c, int d) {
     const Eigen::Vector3d a = P.row(lo).transpose(), b = P.row(hi).transpose(), x = P.row(c).transpose(),
                           y = P.row(d).transpose();
-    if (flip_gain(FlipCriterion::area, a, b, x, y, min_gain) > 0) out.by_area.emplace_back(lo, hi);
-    if (delaunay && flip_gain(FlipCriterion::area_then_delaunay, a, b, x, y, min_gain) > 0)
-      out.by_delaunay.emplace_back(lo, hi);
+    unsigned mark = flip_gain(FlipCriterion::area, a, b, x, y, min_gain) > 0 ? kByArea : 0;
+    if (delaunay && flip_gain(FlipCriterion::area_then_delaunay, a, b, x, y, min_gain) > 0) mark |= kByDelaunay;
+    return mark;
   });
+  Candidates out;
+  for (const MarkedEdge& e : marked) {
+    if (e.mark & kByArea) out.by_area.emplace_back(e.lo, e.hi);
+    if (e.mark & kByDelaunay) out.by_delaunay.emplace_back(e.lo, e.hi);
+  }
   return out;
 }
 

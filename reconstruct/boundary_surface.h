@@ -4,6 +4,7 @@
 // triangles meet the surface anywhere but in shared vertices and edges.
 #pragma once
 
+#include "reconstruct/cell_blocks.h"
 #include "reconstruct/u64_map.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -258,14 +259,24 @@ class PointTree {
   std::vector<Node> nodes_;                 // implicit binary tree: children 2i+1, 2i+2
 };
 
-/// Calls f(lo, hi, c, d) for every edge lo < hi shared by a face (lo, hi, c)
-/// and a face (hi, lo, d) of the closed, oriented surface F over n points,
-/// in order of lo: linear time (half-edges bucketed by their lower vertex
-/// by counting sort, then paired within each small bucket — a
-/// million-face surface has six million half-edges, too many for a
-/// comparison sort to be cheap). Unpaired half-edges are skipped.
-template <typename Fn>
-void for_each_edge(Eigen::Index n, const Eigen::MatrixX3i& F, Fn&& f) {
+/// An edge lo < hi of a closed surface and the mark select_edges gave it.
+struct MarkedEdge {
+  int lo, hi;
+  unsigned mark;
+};
+
+/// The edges lo < hi shared by a face (lo, hi, c) and a face (hi, lo, d) of
+/// the closed, oriented surface F over n points for which select(lo, hi, c,
+/// d) returns a nonzero mark, with their marks, in order of lo, then hi.
+/// Linear time: half-edges bucketed by their lower vertex by counting sort,
+/// then paired within each small bucket (a million-face surface has six
+/// million half-edges, too many for a comparison sort to be cheap).
+/// Unpaired half-edges are skipped. The buckets are paired and judged on all
+/// cores, by blocks of lower vertices (select must be safe to call
+/// concurrently): on CGAL's real meshes the flips' and unfolding's two
+/// passes had been a twentieth of a reconstruction, with the other core idle.
+template <typename Select>
+std::vector<MarkedEdge> select_edges(Eigen::Index n, const Eigen::MatrixX3i& F, Select&& select) {
   struct Half {
     int hi, opposite;
     bool forward;
@@ -281,16 +292,26 @@ void for_each_edge(Eigen::Index n, const Eigen::MatrixX3i& F, Fn&& f) {
       const int u = F(t, k), v = F(t, (k + 1) % 3);
       halves[fill[static_cast<std::size_t>(std::min(u, v))]++] = {std::max(u, v), F(t, (k + 2) % 3), u < v};
     }
-  for (std::size_t lo = 0; lo + 1 < start.size(); ++lo) {
-    const auto first = halves.begin() + static_cast<std::ptrdiff_t>(start[lo]);
-    const auto last = halves.begin() + static_cast<std::ptrdiff_t>(start[lo + 1]);
-    std::sort(first, last, [](const Half& x, const Half& y) { return std::tie(x.hi, x.forward) < std::tie(y.hi, y.forward); });
-    for (auto x = first; x != last && x + 1 != last; ++x) {
-      const auto y = x + 1;
-      // y runs lo → hi (forward sorts last): its face is (lo, hi, y->opposite).
-      if (x->hi == y->hi) f(static_cast<int>(lo), x->hi, y->opposite, x->opposite);
+  constexpr std::size_t kPointsPerBlock = 4096;
+  const auto points = static_cast<std::size_t>(n);
+  std::vector<std::vector<MarkedEdge>> found((points + kPointsPerBlock - 1) / kPointsPerBlock);
+  for_each_block(found.size(), [&](std::size_t b) {
+    for (std::size_t lo = b * kPointsPerBlock; lo < std::min(points, (b + 1) * kPointsPerBlock); ++lo) {
+      const auto first = halves.begin() + static_cast<std::ptrdiff_t>(start[lo]);
+      const auto last = halves.begin() + static_cast<std::ptrdiff_t>(start[lo + 1]);
+      std::sort(first, last, [](const Half& x, const Half& y) { return std::tie(x.hi, x.forward) < std::tie(y.hi, y.forward); });
+      for (auto x = first; x != last && x + 1 != last; ++x) {
+        const auto y = x + 1;
+        // y runs lo → hi (forward sorts last): its face is (lo, hi, y->opposite).
+        if (x->hi != y->hi) continue;
+        if (const unsigned mark = select(static_cast<int>(lo), x->hi, y->opposite, x->opposite))
+          found[b].push_back({static_cast<int>(lo), x->hi, mark});
+      }
     }
-  }
+  });
+  std::vector<MarkedEdge> out;
+  for (const std::vector<MarkedEdge>& block : found) out.insert(out.end(), block.begin(), block.end());
+  return out;
 }
 
 /// faces are counter-clockwise seen from outside; ids stay valid (a removed

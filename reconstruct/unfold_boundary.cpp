@@ -284,9 +284,10 @@ namespace {
 
 std::vector<std::pair<int, int>> fold_edges(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& F, double cos_fold) {
   std::vector<std::pair<int, int>> folds;
-  for_each_edge(P.rows(), F, [&](int lo, int hi, int c, int d) {
-    if (folded(P, cos_fold, lo, hi, c, d)) folds.emplace_back(lo, hi);
-  });
+  for (const MarkedEdge& e : select_edges(P.rows(), F, [&](int lo, int hi, int c, int d) {
+         return static_cast<unsigned>(folded(P, cos_fold, lo, hi, c, d));
+       }))
+    folds.emplace_back(e.lo, e.hi);
   return folds;
 }
 
