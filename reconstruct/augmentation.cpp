@@ -125,8 +125,8 @@ Augmentation run_levels(Carver& carver, std::priority_queue<Carve>& heap, std::v
 class Augmenter {
  public:
   Augmenter(const Eigen::MatrixX3d& P, const PointNeighbours& adjacency, const Eigen::MatrixX3i& boundary,
-            const Eigen::MatrixXi& keep)
-      : adjacency_(adjacency), surface_(P, boundary), keep_(keep), proposed_below_(static_cast<std::size_t>(P.rows()), 0) {}
+            const Eigen::MatrixXi& keep, std::shared_ptr<const PointTree> tree)
+      : adjacency_(adjacency), surface_(P, boundary, std::move(tree)), keep_(keep), proposed_below_(static_cast<std::size_t>(P.rows()), 0) {}
 
   Augmentation run(std::vector<int>& interior, const AugmentationOptions& options) {
     for (const double c0 : levels(options))
@@ -297,9 +297,10 @@ class Augmenter {
 
 Augmentation augment_constriction(const Eigen::MatrixX3d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
-                                  const AugmentationOptions& options, std::optional<BoundarySurface>* surface) {
+                                  const AugmentationOptions& options, std::optional<BoundarySurface>* surface,
+                                  std::shared_ptr<const PointTree> tree) {
   if (interior_vertices.empty()) return {};
-  Augmenter augmenter(points, adjacency, boundary, options.keep);
+  Augmenter augmenter(points, adjacency, boundary, options.keep, std::move(tree));
   const Augmentation result = augmenter.run(interior_vertices, options);
   boundary = augmenter.boundary();
   if (surface) surface->emplace(augmenter.release_surface());

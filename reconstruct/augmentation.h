@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <span>
 #include <unordered_map>
@@ -16,6 +17,7 @@
 namespace scanstation {
 
 class BoundarySurface;
+class PointTree;
 
 struct AugmentationOptions {
   double step = 0.1;              ///< how much c0 drops per level
@@ -72,6 +74,7 @@ class PointNeighbours {
 ///                    spatial index, for the flips to go on with
 ///                    (flip_boundary) instead of indexing it again; it
 ///                    refers to `points`, which must outlive it
+/// tree               optional: a tree over `points` built beforehand
 ///
 /// A carve removes the tetrahedron (a, b, c, v) behind a boundary triangle
 /// (a, b, c) and brings the interior point v to the boundary; allowed when
@@ -85,7 +88,8 @@ class PointNeighbours {
 Augmentation augment_constriction(const Eigen::MatrixX3d& points, const PointNeighbours& adjacency,
                                   Eigen::MatrixX3i& boundary, std::vector<int>& interior_vertices,
                                   const AugmentationOptions& options = {},
-                                  std::optional<BoundarySurface>* surface = nullptr);
+                                  std::optional<BoundarySurface>* surface = nullptr,
+                                  std::shared_ptr<const PointTree> tree = nullptr);
 
 }  // namespace scanstation
 

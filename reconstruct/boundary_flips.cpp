@@ -357,14 +357,15 @@ std::size_t flip_delaunay_cells(const DelaunayComplex<3>& complex, std::vector<c
 
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain, const DelaunayComplex<3>* cells,
-                          std::optional<BoundarySurface>* given, std::optional<CellsAround>* around) {
+                          std::optional<BoundarySurface>* given, std::optional<CellsAround>* around,
+                          std::shared_ptr<const PointTree> tree) {
   const bool delaunay = criterion == FlipCriterion::area_then_delaunay;
   Candidates candidates = candidate_edges(points, boundary, delaunay, min_gain);
   if (candidates.by_area.empty() && candidates.by_delaunay.empty()) return 0;
   std::optional<BoundarySurface> own;
   std::optional<BoundarySurface>& held = given ? *given : own;
   const bool edited_surface = held.has_value();  // built from the cells' boundary, then augmented
-  if (!held) held.emplace(points, boundary);
+  if (!held) held.emplace(points, boundary, std::move(tree));
   BoundarySurface& surface = *held;
   const TriangleSet fixed(keep);
   std::optional<CellFlips> cell_flips;

@@ -7,12 +7,14 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace scanstation {
 
 class BoundarySurface;
+class PointTree;
 
 /// What a flip should lower.
 enum class FlipCriterion {
@@ -55,12 +57,14 @@ enum class FlipCriterion {
 ///          (unfold_boundary) to go on with
 /// around   optional, with `cells`: the cells around each of their points,
 ///          shared with the steps before (built here when empty)
+/// tree     optional: a tree over `points` for the surface built here
 /// Returns the flips made.
 std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boundary, FlipCriterion criterion,
                           const Eigen::MatrixXi& keep, double min_gain = 1e-3,
                           const DelaunayComplex<3>* cells = nullptr,
                           std::optional<BoundarySurface>* surface = nullptr,
-                          std::optional<CellsAround>* around = nullptr);
+                          std::optional<CellsAround>* around = nullptr,
+                          std::shared_ptr<const PointTree> tree = nullptr);
 
 /// Delaunay flips of the boundary of a union of Delaunay cells, each made by
 /// adding or removing one cell: an edge (a, b) between the boundary

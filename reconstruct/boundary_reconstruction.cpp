@@ -8,12 +8,14 @@
 #include "reconstruct/cell_blocks.h"
 
 #include <Eigen/Geometry>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <future>
 #include <limits>
 #include <string>
 #include <thread>
@@ -240,7 +242,7 @@ ConstrictionOptions constriction_options(const ReconstructionOptions& options) {
 }
 
 void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const ReconstructionOptions& options,
-                    SurfaceReconstruction& out) {
+                    SurfaceReconstruction& out, std::future<ComplexIndexes>* indexes) {
   BoundaryStatistics& s = out.statistics;
   s.guide_faces = c.guide_faces;
   // Both before augmentation: they need a boundary of cells. Every cell left
@@ -248,7 +250,13 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   // flips read the kept flags alone, so the boundary is listed again once,
   // after both.
   bool changed = false;
-  std::optional<CellsAround> around;  // indexed by the first step that needs it, then shared
+  std::optional<CellsAround> around;  // given, or indexed by the first step that needs it, then shared
+  std::shared_ptr<const PointTree> tree;
+  if (indexes && indexes->valid()) {
+    ComplexIndexes ready = indexes->get();
+    around.emplace(std::move(ready.around));
+    tree = std::move(ready.points);
+  }
   if (options.webs) {
     const auto start = std::chrono::steady_clock::now();
     s.web_cells = carve_webs(dt, c.kept, c.boundary, options.constriction.keep, *options.webs, &around);
@@ -274,7 +282,7 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   if (!c.all_on_boundary && options.augment) {
     const auto start = std::chrono::steady_clock::now();
     const Augmentation a = augment_constriction(dt.points, PointNeighbours(dt, around), out.mesh.faces, c.interior_vertices,
-                                                options.augmentation, &surface);
+                                                options.augmentation, &surface, tree);
     s.constriction_seconds += seconds_since(start);
     s.c0_used = a.c0_used;
     s.carved = a.carved;
@@ -283,10 +291,11 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   if (options.flips) {
     const auto start = std::chrono::steady_clock::now();
     s.flips = flip_boundary(dt.points, out.mesh.faces, *options.flips, options.constriction.keep, 1e-3, &dt, &surface,
-                            &around);
+                            &around, tree);
     s.flip_seconds += seconds_since(start);
   }
-  around.reset();  // unfolding does not need it: the peak memory is here on real meshes
+  around.reset();  // unfolding needs neither: the peak memory is here on real meshes
+  tree.reset();
   if (options.unfold) {
     const auto start = std::chrono::steady_clock::now();
     const UnfoldStatistics u =
@@ -320,13 +329,22 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   const ReconstructionOptions options = renumbered(given, map, out.source);
 
   const auto start = std::chrono::steady_clock::now();
+  // The indexes the stages after constriction need, on the other core while
+  // constriction runs on this one (alone: TBB's workers would take turns
+  // with constriction). Declared after the complex: its destructor waits.
+  std::future<ComplexIndexes> indexes;
+  if (options.webs || options.augment || options.flips)
+    indexes = std::async(std::launch::async, [&dt] {
+      tbb::task_arena one_core(1);
+      return one_core.execute([&] { return ComplexIndexes{CellsAround(dt), std::make_shared<const PointTree>(dt.points)}; });
+    });
   ConstrictionOptions constriction = constriction_options(options);
   constriction.carve_first = carve_first(dt, triangulated.original, options, s);
   Constriction<3> c = options.voronoi_skeleton ? voronoi_skeleton(dt, *options.voronoi_skeleton)
                                                : constrict(dt, constriction);
   s.constriction_seconds = seconds_since(start);
   out.mesh.vertices.positions = std::move(triangulated.original);
-  finish_surface(dt, c, options, out);
+  finish_surface(dt, c, options, out, &indexes);
   to_output_numbering(triangulated.output, out);
   return out;
 }

@@ -14,10 +14,14 @@
 #include "reconstruct/voronoi_skeleton.h"
 #include "reconstruct/web_carving.h"
 
+#include <future>
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace scanstation {
+
+class PointTree;
 
 /// γ-guided constriction (a scanstation extension of §5.7): Delaunay faces
 /// whose two empty Delaunay balls are both wide — the face is in
@@ -142,14 +146,25 @@ struct CurveReconstruction {
 /// the γ-guide of options.guide.
 ConstrictionOptions constriction_options(const ReconstructionOptions& options);
 
+/// What the stages after constriction index over a complex alone: the cells
+/// around each point (web carving, augmentation's neighbours, the flips)
+/// and a tree over its points (augmentation, the flips' exact tests).
+struct ComplexIndexes {
+  CellsAround around;
+  std::shared_ptr<const PointTree> points;
+};
+
 /// The stages after constriction of a 3D Delaunay complex, shared by
 /// reconstruct_surface and the incremental constriction: augmentation (§5.4)
 /// when c left points interior and options.augment is on, the flips of
 /// options.flips, the kept tetrahedra and the statistics. out.mesh.vertices
 /// must hold the points (dt.points up to scale); fills out.mesh.faces,
 /// out.interior and out.statistics (except the input counts and Delaunay time).
+/// indexes optional: the cells around each point and a tree over dt.points,
+/// being built on another thread (reconstruct_surface starts them while
+/// constriction runs); else they are built when first needed.
 void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const ReconstructionOptions& options,
-                    SurfaceReconstruction& out);
+                    SurfaceReconstruction& out, std::future<ComplexIndexes>* indexes = nullptr);
 
 /// What `scanstation reconstruct` does with 3D points: the defaults with
 /// ConstrictionCriterion::area_change_and_gamma, which recovers the most true

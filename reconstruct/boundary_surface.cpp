@@ -88,8 +88,10 @@ void PointTree::build(int node, int begin, int end) {
   }
 }
 
-BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary)
+BoundarySurface::BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary,
+                                 std::shared_ptr<const PointTree> points)
     : P_(P),
+      points_(std::move(points)),
       faces_grid_(surface_grid(P, boundary)),
       faces_at_(static_cast<std::size_t>(P.rows())),
       on_boundary_(static_cast<std::size_t>(P.rows()), 0) {

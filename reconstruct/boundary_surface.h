@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <tuple>
 #include <type_traits>
@@ -321,8 +322,10 @@ class BoundarySurface {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Triangle = std::array<int, 3>;
 
-  /// P #P by 3 positions; boundary #F by 3 faces
-  BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary);
+  /// P #P by 3 positions; boundary #F by 3 faces; points optional: a tree
+  /// over P built beforehand (else built on the first point query)
+  BoundarySurface(const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& boundary,
+                  std::shared_ptr<const PointTree> points = nullptr);
 
   int add_face(const Triangle& t);
   void remove_face(int id);
@@ -374,13 +377,13 @@ class BoundarySurface {
  private:
   const Eigen::MatrixX3d& P_;
   std::vector<Kernel::Point_3> cgal_;
-  // Built on the first point query (unfolding asks none); one surface serves
-  // one thread.
+  // Given, or built on the first point query (unfolding asks none); one
+  // surface serves one thread.
   const PointTree& points() const {
-    if (!points_) points_.emplace(P_);
+    if (!points_) points_ = std::make_shared<const PointTree>(P_);
     return *points_;
   }
-  mutable std::optional<PointTree> points_;
+  mutable std::shared_ptr<const PointTree> points_;
   BoxGrid faces_grid_;
   std::vector<Triangle> faces_;
   std::vector<char> alive_;

@@ -33,9 +33,9 @@ class WebCarver {
   }
 
   std::size_t run(const Eigen::MatrixX3i& boundary) {
+    if (!around_) around_.emplace(dt_);
     const std::vector<std::vector<int>> webs = find_webs(boundary);
     if (webs.empty()) return 0;
-    if (!around_) around_.emplace(dt_);
     const auto cells = static_cast<std::size_t>(dt_.cells.rows());
     const auto points = static_cast<std::size_t>(dt_.points.rows());
     mark_.assign(cells, 0);
@@ -71,16 +71,15 @@ class WebCarver {
 
   Eigen::Vector3d point(int v) const { return dt_.points.row(v).transpose(); }
 
-  // The spacing of GapOptions at v (squared), from the Delaunay edges at v,
-  // found by a walk over the cells around v; computed on first use: most
-  // points are never asked (see find_webs).
+  // The spacing of GapOptions at v (squared), from the Delaunay edges at v
+  // (those of the cells around it); computed on first use: most points are
+  // never asked (see find_webs).
   double spacing_at(int v) {
     double& known = spacing_[static_cast<std::size_t>(v)];
     if (known >= 0) return known;
-    walk_star(v);
     const auto k = static_cast<std::size_t>(options_.faces.neighbour);
     shortest_.assign(k, kInfinity);
-    for (const int c : star_)
+    for (const int c : (*around_)[static_cast<std::size_t>(v)])
       for (int i = 0; i < 4; ++i)
         if (const int w = dt_.cells(c, i); w != v) offer_length(shortest_.data(), k, (point(w) - point(v)).squaredNorm());
     known = kth_length(shortest_.data(), k);
@@ -164,34 +163,10 @@ class WebCarver {
     return webs;
   }
 
-  // The cells around v, by a walk across the faces at v, into star_.
-  void walk_star(int v) {
-    if (cell_of_.empty()) {
-      cell_of_.assign(static_cast<std::size_t>(dt_.points.rows()), -1);
-      for (Eigen::Index c = 0; c < dt_.cells.rows(); ++c)
-        for (int k = 0; k < 4; ++k) cell_of_[static_cast<std::size_t>(dt_.cells(c, k))] = static_cast<int>(c);
-      walked_.assign(static_cast<std::size_t>(dt_.cells.rows()), 0);
-    }
-    ++walk_;
-    const int first = cell_of_[static_cast<std::size_t>(v)];
-    star_.assign(1, first);
-    walked_[static_cast<std::size_t>(first)] = walk_;
-    for (std::size_t k = 0; k < star_.size(); ++k)
-      for (int i = 0; i < 4; ++i) {
-        if (dt_.cells(star_[k], i) == v) continue;
-        const int n = dt_.neighbors(star_[k], i);  // across a face holding v
-        if (n >= 0 && walked_[static_cast<std::size_t>(n)] != walk_) {
-          walked_[static_cast<std::size_t>(n)] = walk_;
-          star_.push_back(n);
-        }
-      }
-  }
-
   // The kept cell with the boundary face abd, and the face's index in it;
   // {−1, −1} when there is none.
-  std::pair<int, int> kept_cell_of(int a, int b, int d) {
-    walk_star(a);
-    for (const int c : star_) {
+  std::pair<int, int> kept_cell_of(int a, int b, int d) const {
+    for (const int c : (*around_)[static_cast<std::size_t>(a)]) {
       if (!kept_[static_cast<std::size_t>(c)]) continue;
       for (int i = 0; i < 4; ++i) {
         const int w = dt_.cells(c, i);
@@ -429,10 +404,6 @@ class WebCarver {
   const double width_;             // squared
   static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::vector<double> spacing_;    // squared, per point; −1: not known yet
-  std::vector<int> cell_of_;       // per point, a cell around it (once the spacing is asked)
-  std::vector<int> star_;          // scratch of walk_star
-  std::vector<int> walked_;        // per cell, the last walk that met it
-  int walk_ = 0;
   std::vector<double> shortest_;   // scratch of spacing_at
   TriangleSet keep_;
   std::optional<CellsAround> own_around_;  // unless shared
