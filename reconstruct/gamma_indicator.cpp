@@ -34,12 +34,13 @@ double gamma_indicator(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const
   const double d = 2.0 * u.dot(v.cross(w));
   const Eigen::Vector3d centre =
       (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / d;
-  const double R = centre.norm();
-  // Circumradius of the face: |e1||e2||e1−e2| / (2|e1×e2|).
+  const double R2 = centre.squaredNorm();
+  // Squared circumradius of the face: |e1|²|e2|²|e1−e2|² / (4|e1×e2|²);
+  // r/R from the squares, one root instead of four.
   const Eigen::Vector3d e1 = b - a, e2 = c - a, n = e1.cross(e2);
-  const double r = e1.norm() * e2.norm() * (e1 - e2).norm() / (2.0 * n.norm());
-  if (!std::isfinite(R) || !std::isfinite(r) || R == 0.0) return 1.0;
-  return signed_magnitude(r / R, n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.2, Eq. (5.2)
+  const double r2 = e1.squaredNorm() * e2.squaredNorm() * (e1 - e2).squaredNorm() / (4.0 * n.squaredNorm());
+  if (!std::isfinite(R2) || !std::isfinite(r2) || R2 == 0.0) return 1.0;
+  return signed_magnitude(std::sqrt(r2 / R2), n.dot(l - a), n.dot(centre + (l - a)));  // Definition 5.2, Eq. (5.2)
 }
 
 }  // namespace scanstation
