@@ -331,9 +331,10 @@ SurfaceReconstruction reconstruct_surface(const Eigen::MatrixX3d& points, const 
   const auto start = std::chrono::steady_clock::now();
   // The indexes the stages after constriction need, on the other core while
   // constriction runs on this one (alone: TBB's workers would take turns
-  // with constriction). Declared after the complex: its destructor waits.
+  // with constriction); with one core, when first needed. Declared after
+  // the complex: its destructor waits.
   std::future<ComplexIndexes> indexes;
-  if (options.webs || options.augment || options.flips)
+  if ((options.webs || options.augment || options.flips) && std::thread::hardware_concurrency() > 1)
     indexes = std::async(std::launch::async, [&dt] {
       tbb::task_arena one_core(1);
       return one_core.execute([&] { return ComplexIndexes{CellsAround(dt), std::make_shared<const PointTree>(dt.points)}; });
