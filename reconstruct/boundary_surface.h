@@ -275,7 +275,8 @@ struct MarkedEdge {
 /// Unpaired half-edges are skipped. The buckets are paired and judged on all
 /// cores, by blocks of lower vertices (select must be safe to call
 /// concurrently): on CGAL's real meshes the flips' and unfolding's two
-/// passes had been a twentieth of a reconstruction, with the other core idle.
+/// passes had been about a thirtieth of a reconstruction, with the other
+/// core idle.
 template <typename Select>
 std::vector<MarkedEdge> select_edges(Eigen::Index n, const Eigen::MatrixX3i& F, Select&& select) {
   struct Half {
