@@ -59,7 +59,7 @@ struct WebOptions {
 /// keep      #K by 3 boundary triangles that must stay (§5.7), may be empty:
 ///           a sheet holding one stays
 /// around    optional: the cells around each point of dt, shared with the
-///           steps after this one (built here when empty and needed)
+///           steps after this one (built here when empty)
 /// Returns the cells removed. Each sheet goes, with the repairs above, only
 /// if afterwards every point of its cells still lies in a kept cell, the
 /// boundary is a 2-manifold at each of them, the Euler characteristic
