@@ -264,11 +264,11 @@ class Unfolder {
     }
     for (const Triangle& t : flat)  // one by one: each visits only the faces near it
       if (surface_.meets_surface({t}, {})) return false;
+    std::vector<Eigen::AlignedBox3d> boxes;  // each once, not once per pair
+    for (const Triangle& t : flat) boxes.push_back(surface_.box({t[0], t[1], t[2]}));
     for (std::size_t i = 0; i < flat.size(); ++i)
       for (std::size_t j = i + 1; j < flat.size(); ++j)
-        if (surface_.box({flat[i][0], flat[i][1], flat[i][2]}).intersects(surface_.box({flat[j][0], flat[j][1], flat[j][2]})) &&
-            surface_.improper(flat[i], flat[j]))
-          return false;
+        if (boxes[i].intersects(boxes[j]) && surface_.improper(flat[i], flat[j])) return false;
     return true;
   }
 
