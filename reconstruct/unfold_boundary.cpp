@@ -265,18 +265,9 @@ class Unfolder {
         if (chord && surface_.has_edge(a, b)) return false;
       }
     }
-    std::vector<Triangle> was;
-    for (Triangle t : before) {
-      std::sort(t.begin(), t.end());
-      was.push_back(t);
-    }
-    std::sort(was.begin(), was.end());
-    for (const Triangle& t : flat) {  // one by one: each visits only the faces near it
-      Triangle key = t;
-      std::sort(key.begin(), key.end());
-      if (std::binary_search(was.begin(), was.end(), key)) continue;
-      if (surface_.meets_surface({t}, {})) return false;
-    }
+    const TriangleSet was(before);
+    for (const Triangle& t : flat)  // one by one: each visits only the faces near it
+      if (!was.contains(t) && surface_.meets_surface({t}, {})) return false;
     std::vector<Eigen::AlignedBox3d> boxes;  // each once, not once per pair
     for (const Triangle& t : flat) boxes.push_back(surface_.box({t[0], t[1], t[2]}));
     for (std::size_t i = 0; i < flat.size(); ++i)
