@@ -1,8 +1,8 @@
 // The incremental constriction against a from-scratch reconstruction of the
 // same points, measured in the same run.
 //
-//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random|profiles] [--shape S] [--subdivision L] [--noise S] [--margin M]
-//   build/bench/incremental_bench recall [--batches B] [--margin M] MESH.off ...
+//   build/bench/incremental_bench timing [--points N] [--batches B] [--every K] [--stop-after S] [--order scan|random|profiles] [--shape S] [--subdivision L] [--noise S] [--margin M] [--local-share F]
+//   build/bench/incremental_bench recall [--batches B] [--margin M] [--local-share F] MESH.off ...
 //
 // timing: N points (default 100000) sampled on a simulated shape (chalice,
 // the default: a surface of revolution; or ellipsoid), fed in B batches
@@ -26,6 +26,8 @@
 // spaced; the ellipsoid here is the smooth one (no facets), the chalice its
 // profile revolved. --noise S then moves each point by N(0, S²) per axis
 // (0 gives exactly symmetric rings: a degenerate input for both).
+// --local-share F: IncrementalConstriction's local_share (default 0.25; 1
+// repairs locally wherever the fill settles).
 // --stop-after S feeds only the first S batches (the median is then over
 // early batches, each a larger share of the points so far: pessimistic).
 //
@@ -73,6 +75,7 @@ double thread_cpu_seconds() {
 struct Args {
   Eigen::Index points = 100000;
   int batches = 100, every = 1, margin = 2, stop_after = -1;
+  double local_share = 0.25;
   bool scan = true;
   bool profiles = false;  // --order profiles: each batch one laser profile (see the header)
   std::string shape = "chalice";
@@ -145,11 +148,11 @@ int timing(const Args& a) {
     order = arrival_order(P, a.scan);
   }
   const std::size_t n = order.size();
-  std::printf("%s (subdivision %d, noise %g), %zu points, %d batches, %s order, margin %d\n", a.shape.c_str(), a.subdivision,
-              a.noise, n, a.batches, a.profiles ? "profiles" : a.scan ? "scan" : "random", a.margin);
+  std::printf("%s (subdivision %d, noise %g), %zu points, %d batches, %s order, margin %d, local share %g\n", a.shape.c_str(),
+              a.subdivision, a.noise, n, a.batches, a.profiles ? "profiles" : a.scan ? "scan" : "random", a.margin, a.local_share);
   std::printf("%6s %9s %10s %10s %8s %9s %7s %9s %6s %5s %s\n", "batch", "points", "inc_s", "scratch_s", "ratio", "cpu_ratio",
               "joined", "touched", "rings", "wide", "all");
-  IncrementalConstriction inc(surface_defaults(), a.margin);
+  IncrementalConstriction inc(surface_defaults(), a.margin, a.local_share);
   std::vector<double> ratios, cpu_ratios, times;
   const int fed = a.stop_after >= 0 ? std::min(a.stop_after, a.batches) : a.batches;
   for (int b = 0; b < fed; ++b) {
@@ -193,7 +196,7 @@ int recall(const Args& a) {
     bool valid = true;
     for (const bool scan : {true, false}) {
       const std::vector<Eigen::Index> order = arrival_order(P, scan);
-      IncrementalConstriction inc(surface_defaults(), a.margin);
+      IncrementalConstriction inc(surface_defaults(), a.margin, a.local_share);
       for (int b = 0; b < a.batches; ++b)
         inc.add_batch(sim::ordered_rows(P, order, batch_end(order.size(), a.batches, b - 1), batch_end(order.size(), a.batches, b)));
       const SurfaceReconstruction s = inc.surface();
@@ -232,6 +235,7 @@ int main(int argc, char** argv) {
     }
     else if (arg == "--shape") a.shape = value();
     else if (arg == "--margin") a.margin = std::stoi(value());
+    else if (arg == "--local-share") a.local_share = std::stod(value());
     else if (arg == "--subdivision") a.subdivision = std::stoi(value());
     else if (arg == "--noise") a.noise = std::stod(value());
     else if (arg == "--stop-after") a.stop_after = std::stoi(value());

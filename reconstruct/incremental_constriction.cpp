@@ -103,6 +103,7 @@ struct IncrementalConstriction::State {
   ReconstructionOptions options;
   ConstrictionOptions constriction;
   int margin = 2;
+  double local_share = 0.25;
   Delaunay dt;
   std::vector<Eigen::Vector3d> points;  // distinct points, in the order received
   std::vector<Eigen::Index> source;     // their rows in the stream of all batches
@@ -460,13 +461,24 @@ struct IncrementalConstriction::State {
     return out;
   }
 
+  // Whether a region is small enough for a local repair: at most
+  // local_share of the triangulation's cells (see fill_to_ball).
+  bool local(const std::vector<Cell>& region) const {
+    return static_cast<double>(region.size()) <= local_share * static_cast<double>(dt.number_of_cells());
+  }
+
   // Makes sure the filled solid is still a ball: at every point whose star
   // changed the boundary must be a 2-manifold (its link one cycle), and the
   // Euler characteristic must stay 2 (a handle lowers it, an enclosed pocket
   // raises it). Where the fill pinched the boundary at a point, the removed
   // cells around that point are filled too; where a part of the fill changed
   // the Euler characteristic, those around every point of that part. Returns
-  // false when that does not settle within a few rounds. `parts` ends as
+  // false when that does not settle within a few rounds, or when the fill
+  // grows beyond local_share of the triangulation's cells: its local
+  // complex, with the cells around its points, would then hold most of the
+  // triangulation, and the fill's rounds and the local constrictions (with
+  // a ring released where a part locks) cost more than constricting the
+  // whole once (docs/design.md, "Too wide to be local"). `parts` ends as
   // the connected parts of the fill.
   bool fill_to_ball(std::vector<Cell>& region, FillParts& parts) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
@@ -497,6 +509,7 @@ struct IncrementalConstriction::State {
     std::size_t checked = 0, pockets_checked = 0;
     std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
+      if (!local(region)) break;  // the whole is constricted again
       const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
       checked = region.size();
       // A point's pinch changes only with its star: the candidates are the
@@ -1123,16 +1136,18 @@ struct IncrementalConstriction::State {
           }
         }
     };
-    for (int ring = 0; ring < margin && !front.empty(); ++ring) {
+    // A margin beyond the local share of the cells is not grown further:
+    // fill_to_ball then gives the batch to the wider repair at once.
+    for (int ring = 0; ring < margin && !front.empty() && local(front); ++ring) {
       add_points();
-      for (const std::size_t end = known.size(); kept_done < end; ++kept_done)
+      for (const std::size_t end = known.size(); kept_done < end && local(front); ++kept_done)
         for (const Cell c : star(known[kept_done]))
           if (c->info().local < 0 && c->info().kept) {
             c->info().local = 0;
             front.push_back(c);
           }
       add_points();
-      for (const std::size_t end = known.size(); removed_done < end; ++removed_done)
+      for (const std::size_t end = known.size(); removed_done < end && local(front); ++removed_done)
         for (const Cell c : star(known[removed_done]))
           if (!c->info().kept) {
             c->info().kept = 1;
@@ -1151,7 +1166,7 @@ struct IncrementalConstriction::State {
     for (const Vertex v : known) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
     // The skin: layers of cells across a face from the rings, kept and
     // removed (these filled) alike.
-    for (std::size_t layer = 0, from = 0; layer < kSkinLayers; ++layer) {
+    for (std::size_t layer = 0, from = 0; layer < kSkinLayers && local(front); ++layer) {
       const std::size_t to = front.size();
       for (std::size_t i = from; i < to; ++i)
         for (int k = 0; k < 4; ++k) {
@@ -1222,15 +1237,18 @@ struct IncrementalConstriction::State {
   }
 };
 
-IncrementalConstriction::IncrementalConstriction(const ReconstructionOptions& options, int margin)
+IncrementalConstriction::IncrementalConstriction(const ReconstructionOptions& options, int margin, double local_share)
     : state_(std::make_unique<State>()) {
   if (margin < 0) throw InvalidInput("the margin of the incremental constriction must be at least 0, got " + std::to_string(margin));
+  if (!(local_share > 0.0 && local_share <= 1.0))
+    throw InvalidInput("the local share of the incremental constriction must be in (0, 1], got " + std::to_string(local_share));
   if (options.voronoi_skeleton) throw InvalidInput("the incremental constriction has no Voronoi skeleton method");
   if (options.constriction.keep.rows() > 0)
     throw InvalidInput("the incremental constriction does not support faces to keep (§5.7)");
   state_->options = options;
   state_->constriction = constriction_options(options);
   state_->margin = margin;
+  state_->local_share = local_share;
 }
 
 IncrementalConstriction::~IncrementalConstriction() = default;
