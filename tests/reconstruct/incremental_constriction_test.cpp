@@ -232,6 +232,9 @@ TEST(IncrementalConstriction, NoBoundaryUntilThePointsSpanSpace) {
   Eigen::MatrixX3d nan(1, 3);
   nan << 0, std::nan(""), 0;
   test::expect_error<InvalidInput>([&] { inc.add_batch(nan); }, {"NaN"});
+  test::expect_error<InvalidInput>([] { IncrementalConstriction(surface_defaults(), -1); }, {"margin", "-1"});
+  for (const double share : {0.0, -0.5, 1.5, std::nan("")})
+    test::expect_error<InvalidInput>([&] { IncrementalConstriction(surface_defaults(), 2, share); }, {"local share", "(0, 1]"});
 }
 
 // A turntable's first step delivers one laser profile: a curve in a plane.
