@@ -10,16 +10,20 @@
 // reconstruction sorts them, then inserted.
 #include "bench/benchmark_main.h"
 #include "reconstruct/boundary_reconstruction.h"
+#include "reconstruct/delaunay_complex.h"
+#include "reconstruct/line_of_sight.h"
 #include "reconstruct/spatial_order.h"
 #include "sim/outlines.h"
 #include "sim/random.h"
 #include "sim/sampling.h"
+#include "sim/surface_of_revolution.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -95,6 +99,31 @@ void Reconstruct3(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 
+// Lines of sight through the whole triangulation, as the live boundary of a
+// turntable scan walks them once a step: N points on the hollow chalice
+// (incremental_bench's shape), each seen from a camera 30° round from its
+// own azimuth, level with the cup, four radii out. The walk alone (both
+// cores); the triangulation is built once, outside the timing.
+void LinesOfSight(benchmark::State& state) {
+  const TriangleMesh mesh = sim::surface_of_revolution(sim::chalice_profile(200), 256);
+  const Eigen::MatrixX3d P = sim::sample_surface(mesh, state.range(0), 2024).positions;
+  const DelaunayComplex<3> dt = delaunay_complex(P);
+  const double reach = 4.0 * P.cwiseAbs().maxCoeff(), height = P.col(2).maxCoeff();
+  std::vector<SightLine> lines;
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const double azimuth = std::atan2(P(i, 1), P(i, 0)) + std::numbers::pi / 6;
+    lines.push_back({static_cast<int>(i), Eigen::Vector3d(reach * std::cos(azimuth), reach * std::sin(azimuth), height)});
+  }
+  std::size_t crossed = 0;
+  for (auto _ : state) {
+    const std::vector<int> depth = line_of_sight_depths(dt, dt.points, lines);
+    crossed = static_cast<std::size_t>(std::count_if(depth.begin(), depth.end(), [](int d) { return d >= 0; }));
+  }
+  state.counters["cells"] = static_cast<double>(dt.cells.rows());
+  state.counters["crossed"] = static_cast<double>(crossed);
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
 // 2D: process CPU time (the reconstruction may use more than one thread;
 // CGAL's triangulation uses one) and wall time, same points, same run.
 void CgalDelaunay2(benchmark::State& state) {
@@ -140,6 +169,7 @@ void Reconstruct2(benchmark::State& state) {
 
 BENCHMARK(CgalDelaunay3)->RangeMultiplier(10)->Range(10000, 1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Reconstruct3)->RangeMultiplier(10)->Range(10000, 1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(LinesOfSight)->Arg(30000)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 // Arguments: shape (0 star, 1 chalice), points. Each reconstruction runs
 // right after CGAL's triangulation of the same points, under the same load.
 const bool registered_2d = [] {

@@ -56,6 +56,59 @@ TEST(LineOfSight, WalkFindsExactlyTheCellsASegmentCrosses) {
   }
 }
 
+// Whether the closed segment p → q meets the closed tetrahedron: a
+// parameter interval inside all four closed half-spaces. On the small
+// integer coordinates of the lattice test every product here is exact and
+// distinct parameters differ by far more than the tolerance.
+bool segment_meets_cell(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d* v) {
+  double lo = 0.0, hi = 1.0;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d& a = v[(k + 1) % 4];
+    Eigen::Vector3d n = (v[(k + 2) % 4] - a).cross(v[(k + 3) % 4] - a);
+    if (n.dot(v[k] - a) < 0) n = -n;
+    const double at_p = n.dot(p - a), slope = n.dot(q - p);
+    if (slope == 0.0) {
+      if (at_p < 0.0) return false;
+    } else if (slope > 0.0) {
+      lo = std::max(lo, -at_p / slope);
+    } else {
+      hi = std::min(hi, -at_p / slope);
+    }
+  }
+  return hi - lo > -1e-12;
+}
+
+// Lines that run through vertices, along edges and across faces' edges: the
+// points of a 4 × 4 × 4 lattice (every cube co-spherical), seen along the
+// axes, the face and the cube diagonals. The walk decides its way out
+// where a line meets an edge or a vertex by the face tests, and elsewhere
+// from the sides of the line the edges lie on; either way every cell the
+// segment passes through the inside of is on its path, and every cell on
+// its path touches the segment.
+TEST(LineOfSight, LinesThroughLatticeEdgesAndVertices) {
+  Eigen::MatrixX3d P(64, 3);
+  for (int i = 0; i < 64; ++i) P.row(i) << i % 4, i / 4 % 4, i / 16;
+  const DelaunayComplex<3> dt = delaunay_complex(P);
+  const Eigen::Vector3d directions[] = {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {1, 1, 0}, {0, -1, 1},
+                                        {1, 1, 1}, {-1, 1, -1}, {2, 1, 0}, {1, 2, 3}};
+  int crossed = 0, lines = 0;
+  for (int point = 0; point < 64; point += 3)
+    for (const Eigen::Vector3d& direction : directions) {
+      const Eigen::Vector3d p = P.row(point).transpose(), q = p + 7.0 * direction;
+      const std::vector<int> walked = line_of_sight_depths(dt, P, {{point, q}});
+      for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
+        Eigen::Vector3d v[4];
+        for (int k = 0; k < 4; ++k) v[k] = P.row(dt.cells(c, k)).transpose();
+        const bool on_path = walked[static_cast<std::size_t>(c)] >= 0;
+        if (segment_crosses_cell(p, q, v)) EXPECT_TRUE(on_path) << "point " << point << " cell " << c;
+        if (on_path) EXPECT_TRUE(segment_meets_cell(p, q, v)) << "point " << point << " cell " << c;
+        crossed += on_path;
+      }
+      ++lines;
+    }
+  EXPECT_GT(crossed, 2 * lines);
+}
+
 // A part of a triangulation (the incremental constriction's local
 // complexes): the cells around a few centre points, the centres numbered
 // first. Lines followed within the part end where they leave it. Declaring
