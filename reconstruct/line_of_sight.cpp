@@ -257,9 +257,10 @@ class SightWalk {
   std::vector<int> star_, path_;
 };
 
-// The lines sorted by their points' places along a Hilbert curve over the
-// points' box (a 2^10 grid: coarse enough that the keys are cheap, fine
-// enough that a grid cell holds a few lines); lines without a point last.
+// The lines sorted by their points' places along a Morton curve over the
+// points' box (a 2^10 grid: fine enough that a grid cell holds a few
+// lines), each key packed with its line's number; lines without a point
+// last.
 std::vector<std::uint32_t> spatial_order(const std::vector<Point>& points, const std::vector<SightLine>& lines) {
   const auto has_point = [&](const SightLine& line) {
     return line.point >= 0 && static_cast<std::size_t>(line.point) < points.size();
@@ -271,19 +272,18 @@ std::vector<std::uint32_t> spatial_order(const std::vector<Point>& points, const
   const double size = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
   const double scale = size > 0.0 ? (kCells - 1.0) / size : 0.0;
   const auto grid = [&](double x, double low) { return static_cast<std::uint32_t>((x - low) * scale); };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-  keyed.reserve(lines.size());
+  std::vector<std::uint64_t> keyed(lines.size());
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    std::uint64_t key = ~std::uint64_t{0};
+    std::uint64_t key = std::uint64_t{1} << 31;  // past every point's key
     if (has_point(lines[i])) {
       const Point& p = points[static_cast<std::size_t>(lines[i].point)];
-      key = hilbert_index_3(grid(p.x(), box.xmin()), grid(p.y(), box.ymin()), grid(p.z(), box.zmin()));
+      key = morton_index_3(grid(p.x(), box.xmin()), grid(p.y(), box.ymin()), grid(p.z(), box.zmin()));
     }
-    keyed.emplace_back(key, static_cast<std::uint32_t>(i));
+    keyed[i] = key << 32 | i;
   }
   std::sort(keyed.begin(), keyed.end());
   std::vector<std::uint32_t> order(lines.size());
-  for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
+  for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = static_cast<std::uint32_t>(keyed[k]);
   return order;
 }
 
@@ -297,7 +297,7 @@ std::vector<int> line_of_sight_depths(const DelaunayComplex<3>& dt, const Eigen:
   // walks them: the lines go to both cores in blocks, each thread keeps its
   // own depths, and those are merged by the same least.
   //
-  // The lines are walked in the order of their points along a Hilbert
+  // The lines are walked in the order of their points along a Morton
   // curve: lines walked one after another then start near each other and,
   // towards nearby viewpoints, cross many of the same cells while those are
   // still cached (the cells of a local complex lie in CGAL's storage order,

@@ -137,6 +137,10 @@ std::uint64_t hilbert_index_3(std::uint32_t x, std::uint32_t y, std::uint32_t z)
   return spread_3(X[0]) << 2 | spread_3(X[1]) << 1 | spread_3(X[2]);
 }
 
+std::uint64_t morton_index_3(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  return spread_3(x) << 2 | spread_3(y) << 1 | spread_3(z);
+}
+
 namespace {
 
 // Below this many items a range is sorted by std::sort alone; more points

@@ -103,6 +103,20 @@ std::uint64_t grid_index(const Point& p, double scale) {
   return hilbert_index_2(static_cast<std::uint32_t>(p.x() / scale) << 18, static_cast<std::uint32_t>(p.y() / scale) << 18);
 }
 
+// The Morton index interleaves the coordinates' bits, x highest: against
+// the bit-by-bit definition on random coordinates of up to 21 bits.
+TEST(MortonIndex3, InterleavesTheBitsXFirst) {
+  sim::Random random(3);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const auto coordinate = [&] { return static_cast<std::uint32_t>(random.below(1u << 21)); };
+    const std::uint32_t x = coordinate(), y = coordinate(), z = coordinate();
+    std::uint64_t expected = 0;
+    for (int bit = 20; bit >= 0; --bit)
+      expected = expected << 3 | (x >> bit & 1u) << 2 | (y >> bit & 1u) << 1 | (z >> bit & 1u);
+    EXPECT_EQ(morton_index_3(x, y, z), expected) << x << " " << y << " " << z;
+  }
+}
+
 TEST(BrioHilbertSort, RoundsOfAQuarterEachFollowTheCurve) {
   constexpr int n = 100000;
   auto points = grid_points(n, 5, 1.0);
