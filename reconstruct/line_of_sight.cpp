@@ -34,7 +34,10 @@ struct SightData {
       : cells(static_cast<std::size_t>(dt.cells.rows())), whole_stars(whole_stars),
         cell_of(static_cast<std::size_t>(P.rows()), -1) {
     points.reserve(static_cast<std::size_t>(P.rows()));
-    for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
+      box += points.back().bbox();
+    }
     for (int i = 0; i < 4; ++i)  // column by column, as the complex stores them
       for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
         cells[static_cast<std::size_t>(c)].vertex[static_cast<std::size_t>(i)] = dt.cells(c, i);
@@ -45,6 +48,7 @@ struct SightData {
   }
   std::vector<CellRow> cells;
   std::vector<Point> points;
+  CGAL::Bbox_3 box;  // of the points
   Eigen::Index whole_stars;
   std::vector<int> cell_of;
 };
@@ -58,12 +62,18 @@ void keep_least(int& depth, int d) {
 class SightWalk {
  public:
   explicit SightWalk(const SightData& data)
-      : cells_(data.cells), points_(data.points), whole_stars_(data.whole_stars), cell_of_(data.cell_of) {}
+      : cells_(data.cells), points_(data.points), box_(data.box), whole_stars_(data.whole_stars), cell_of_(data.cell_of) {}
 
   void walk(const SightLine& line, std::vector<int>& depth) {
     if (line.point < 0 || static_cast<std::size_t>(line.point) >= points_.size() || !line.viewpoint.allFinite()) return;
     const Point& p = points_[static_cast<std::size_t>(line.point)];
     const Point q(line.viewpoint.x(), line.viewpoint.y(), line.viewpoint.z());
+    // A viewpoint outside the points' box lies in no cell, so past the way
+    // out of every cell the line crosses from the inside of its entry face
+    // (the line leaves the cell before it gets to q): exit_through needs no
+    // test of q then. The comparisons are exact.
+    const bool outside = q.x() < box_.xmin() || q.x() > box_.xmax() || q.y() < box_.ymin() || q.y() > box_.ymax() ||
+                         q.z() < box_.zmin() || q.z() > box_.zmax();
     int cell = entry_cell(line.point, q);
     path_.clear();
     // A straight segment crosses each cell once; the bound only guards
@@ -74,7 +84,7 @@ class SightWalk {
     Crossing through;
     for (int steps = 0, entry = -1; cell >= 0 && steps < static_cast<int>(cells_.size()); ++steps) {
       path_.push_back(cell);
-      int exit = entry >= 0 && through.valid() ? exit_through(p, q, cell, entry, through) : kUndecided;
+      int exit = entry >= 0 && through.valid() ? exit_through(p, q, outside, cell, entry, through) : kUndecided;
       if (exit == kUndecided) exit = exit_by_faces(p, q, cell, entry, through);
       if (exit < 0) break;  // q lies in this cell
       const int next = neighbor(cell, exit);
@@ -128,9 +138,10 @@ class SightWalk {
   // abd, to see that it is no tie). That face is the one the face tests
   // would find (the line meets no other face of the cell); q strictly
   // beyond it goes on through it (`through` then becomes it), else q is in
-  // the cell (−1). A zero side (the line meets an edge or the line through
-  // one) leaves the choice to the face tests: kUndecided.
-  int exit_through(const Point& p, const Point& q, int cell, int entry, Crossing& through) const {
+  // the cell (−1); `q_outside`: q lies outside the points' box, so beyond.
+  // A zero side (the line meets an edge or the line through one) leaves
+  // the choice to the face tests: kUndecided.
+  int exit_through(const Point& p, const Point& q, bool q_outside, int cell, int entry, Crossing& through) const {
     const int sigma = through.sigma;
     const auto [a, b, c] = through.u;
     const int d = vertex(cell, entry);
@@ -159,7 +170,7 @@ class SightWalk {
     }
     int k = 0;
     while (vertex(cell, k) != opposite) ++k;
-    if (side(cell, k, q) >= 0) return -1;  // q is not past the way out: it lies in the cell
+    if (!q_outside && side(cell, k, q) >= 0) return -1;  // q is not past the way out: it lies in the cell
     through.u = {x, y, d};
     return k;
   }
@@ -252,6 +263,7 @@ class SightWalk {
 
   const std::vector<CellRow>& cells_;
   const std::vector<Point>& points_;
+  CGAL::Bbox_3 box_;
   Eigen::Index whole_stars_;
   const std::vector<int>& cell_of_;
   std::vector<int> star_, path_;
