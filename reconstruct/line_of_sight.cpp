@@ -273,13 +273,8 @@ class SightWalk {
 // points' box (a 2^10 grid: fine enough that a grid cell holds a few
 // lines), each key packed with its line's number; lines without a point
 // last.
-std::vector<std::uint32_t> spatial_order(const std::vector<Point>& points, const std::vector<SightLine>& lines) {
-  const auto has_point = [&](const SightLine& line) {
-    return line.point >= 0 && static_cast<std::size_t>(line.point) < points.size();
-  };
-  CGAL::Bbox_3 box;
-  for (const SightLine& line : lines)
-    if (has_point(line)) box += points[static_cast<std::size_t>(line.point)].bbox();
+std::vector<std::uint32_t> spatial_order(const SightData& data, const std::vector<SightLine>& lines) {
+  const CGAL::Bbox_3& box = data.box;
   constexpr double kCells = 1024.0;
   const double size = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
   const double scale = size > 0.0 ? (kCells - 1.0) / size : 0.0;
@@ -287,8 +282,8 @@ std::vector<std::uint32_t> spatial_order(const std::vector<Point>& points, const
   std::vector<std::uint64_t> keyed(lines.size());
   for (std::size_t i = 0; i < lines.size(); ++i) {
     std::uint64_t key = std::uint64_t{1} << 31;  // past every point's key
-    if (has_point(lines[i])) {
-      const Point& p = points[static_cast<std::size_t>(lines[i].point)];
+    if (const int point = lines[i].point; point >= 0 && static_cast<std::size_t>(point) < data.points.size()) {
+      const Point& p = data.points[static_cast<std::size_t>(point)];
       key = morton_index_3(grid(p.x(), box.xmin()), grid(p.y(), box.ymin()), grid(p.z(), box.zmin()));
     }
     keyed[i] = key << 32 | i;
@@ -314,7 +309,7 @@ std::vector<int> line_of_sight_depths(const DelaunayComplex<3>& dt, const Eigen:
   // towards nearby viewpoints, cross many of the same cells while those are
   // still cached (the cells of a local complex lie in CGAL's storage order,
   // all over memory).
-  const std::vector<std::uint32_t> order = spatial_order(data.points, lines);
+  const std::vector<std::uint32_t> order = spatial_order(data, lines);
   const auto line = [&](std::size_t k) -> const SightLine& { return lines[order[k]]; };
   constexpr std::size_t kBlock = 256;
   if (lines.size() < 8 * kBlock) {
