@@ -212,16 +212,21 @@ namespace {
 // far more than the rounding of the test, cannot meet it. The error of
 // n·(p − a) with n = (b − a)×(c − a) stays below a few units of roundoff
 // times |b − a||c − a||p − a|; the margin is 10^-12 of that, about 4500
-// times larger. Overflow gives no finite answer and no verdict.
+// times larger. The lengths are taken in the 1-norm, which is at least the
+// Euclidean one, so the margin only grows, and no square root is taken: the
+// filter runs on every face a flip's or carve's box meets (the roots were
+// the largest part of its time). Overflow gives no finite answer and no
+// verdict.
+double length_bound(const Eigen::Vector3d& v) { return v.cwiseAbs().sum(); }
 struct PlaneFilter {
   PlaneFilter(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
-      : a(a), n((b - a).cross(c - a)), scale(1e-12 * (b - a).norm() * (c - a).norm()) {}
+      : a(a), n((b - a).cross(c - a)), scale(1e-12 * length_bound(b - a) * length_bound(c - a)) {}
   // +1 or −1 when all of q (at least one) lie clearly on that side, 0 when
   // undecided.
   int side(std::span<const Eigen::Vector3d> q) const {
     int above = 0, below = 0;
     for (const Eigen::Vector3d& p : q) {
-      const double s = n.dot(p - a), margin = scale * (p - a).norm();
+      const double s = n.dot(p - a), margin = scale * length_bound(p - a);
       above += s > margin;
       below += s < -margin;
     }
@@ -234,7 +239,7 @@ struct PlaneFilter {
   int side(const Eigen::AlignedBox3d& box) const {
     const Eigen::Vector3d c = box.center(), h = 0.5 * box.sizes();
     const double s = n.dot(c - a), reach = n.cwiseAbs().dot(h);
-    const double margin = 2.0 * scale * ((c - a).norm() + h.norm());
+    const double margin = 2.0 * scale * (length_bound(c - a) + length_bound(h));
     return s - reach > margin ? 1 : s + reach < -margin ? -1 : 0;
   }
   Eigen::Vector3d a, n;

@@ -40,12 +40,15 @@ class BoxGrid {
     const int l = level_of(box);
     const Eigen::Array3i i = index(l, box.min());
     Cells& cells = level(l);
-    cells[key(i)].push_back(Entry(box, id));
+    const Entry entry(box, id);
+    Cell& cell = cells[key(i)];
+    cell.entries.push_back(entry);
+    cell.reach.extend(entry.box);
     cells.occupy(i);
   }
   void erase(int id, const Eigen::AlignedBox3d& box) {
     const int l = level_of(box);
-    auto& v = level(l)[key(index(l, box.min()))];
+    auto& v = level(l)[key(index(l, box.min()))].entries;
     v.erase(std::remove_if(v.begin(), v.end(), [id](const Entry& e) { return e.id == id; }), v.end());
   }
   /// Calls f(id) for every id whose box meets `region`. When f returns bool,
@@ -54,10 +57,11 @@ class BoxGrid {
   /// returning bool.
   template <typename F>
   bool visit(const Eigen::AlignedBox3d& region, F&& f) const {
+    const FloatBox query(region);
     const auto call = [&](const Entry& e) {
-      if (!e.meets(region)) return true;
+      if (!e.box.meets(query)) return true;
       if constexpr (std::is_invocable_v<F&, int, const Eigen::AlignedBox3d&>) {
-        return static_cast<bool>(f(e.id, e.box()));
+        return static_cast<bool>(f(e.id, e.box.box()));
       } else if constexpr (std::is_same_v<std::invoke_result_t<F&, int>, bool>) {
         return static_cast<bool>(f(e.id));
       } else {
@@ -78,16 +82,19 @@ class BoxGrid {
       const Eigen::Array3i lo = index(l, grown.min()).max(cells.occupied_min()),
                            hi = index(l, grown.max()).min(cells.occupied_max());
       if ((lo > hi).any()) continue;
+      const auto scan = [&](const Cell& cell) {
+        if (!cell.reach.meets(query)) return true;
+        for (const Entry& e : cell.entries)
+          if (!call(e)) return false;
+        return true;
+      };
       if (((hi - lo).cast<double>() + 1.0).prod() > static_cast<double>(cells.size())) {
-        for (const auto& entries : cells.lists())
-          for (const Entry& e : entries)
-            if (!call(e)) return false;
+        for (const Cell& cell : cells.lists())
+          if (!scan(cell)) return false;
       } else {
         const bool completed = for_cells(lo, hi, [&](std::uint64_t k) {
-          if (const std::vector<Entry>* entries = cells.find(k))
-            for (const Entry& e : *entries)
-              if (!call(e)) return false;
-          return true;
+          const Cell* cell = cells.find(k);
+          return !cell || scan(*cell);
         });
         if (!completed) return false;
       }
@@ -96,11 +103,14 @@ class BoxGrid {
   }
 
  private:
-  // The box in floats rounded outwards, so it holds the double box (a visit
-  // may report a few more ids, never fewer): 28 bytes instead of 56, and
-  // the grid is a good part of a surface's memory (one entry per face).
-  struct Entry {
-    Entry(const Eigen::AlignedBox3d& box, int id) : id(id) {
+  // A box in floats rounded outwards, so it holds the double box (a visit
+  // may report a few more ids, never fewer): 24 bytes instead of 48, and
+  // the grid is a good part of a surface's memory (one entry per face). A
+  // query region is rounded the same way, so an entry meeting the region
+  // meets it too.
+  struct FloatBox {
+    FloatBox() = default;
+    explicit FloatBox(const Eigen::AlignedBox3d& box) {
       for (int k = 0; k < 3; ++k) {
         lo[k] = std::nextafter(static_cast<float>(box.min()[k]), -std::numeric_limits<float>::infinity());
         hi[k] = std::nextafter(static_cast<float>(box.max()[k]), std::numeric_limits<float>::infinity());
@@ -109,13 +119,34 @@ class BoxGrid {
     Eigen::AlignedBox3d box() const {
       return {Eigen::Vector3f(lo[0], lo[1], lo[2]).cast<double>(), Eigen::Vector3f(hi[0], hi[1], hi[2]).cast<double>()};
     }
-    bool meets(const Eigen::AlignedBox3d& region) const {
-      for (int k = 0; k < 3; ++k)
-        if (static_cast<double>(hi[k]) < region.min()[k] || static_cast<double>(lo[k]) > region.max()[k]) return false;
-      return true;
+    bool meets(const FloatBox& q) const {
+      return (hi[0] >= q.lo[0]) & (hi[1] >= q.lo[1]) & (hi[2] >= q.lo[2]) & (lo[0] <= q.hi[0]) & (lo[1] <= q.hi[1]) &
+             (lo[2] <= q.hi[2]);
     }
-    float lo[3], hi[3];
+    void extend(const FloatBox& b) {
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], b.lo[k]);
+        hi[k] = std::max(hi[k], b.hi[k]);
+      }
+    }
+    float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                   std::numeric_limits<float>::infinity()};
+    float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                   -std::numeric_limits<float>::infinity()};
+  };
+  struct Entry {
+    Entry(const Eigen::AlignedBox3d& b, int id) : box(b), id(id) {}
+    FloatBox box;
     int id;
+  };
+  // One cell's entries and the box they reach (it grows with each insert
+  // and never shrinks). A box is filed under the cell of its minimum
+  // corner, so a query probes the cells up to one cell size below it; most
+  // of those hold only boxes that stop short of it, told by this one test
+  // instead of reading all their entries.
+  struct Cell {
+    FloatBox reach;
+    std::vector<Entry> entries;
   };
   // The occupied cells of one level, by key. Queries probe many cells, most
   // of them empty, so the lookup is the grid's inner loop
@@ -125,12 +156,12 @@ class BoxGrid {
    public:
     bool empty() const { return lists_.empty(); }
     std::size_t size() const { return lists_.size(); }
-    const std::vector<std::vector<Entry>>& lists() const { return lists_; }
-    const std::vector<Entry>* find(std::uint64_t k) const {
+    const std::vector<Cell>& lists() const { return lists_; }
+    const Cell* find(std::uint64_t k) const {
       const std::uint32_t* i = index_.find(k);
       return i ? &lists_[*i] : nullptr;
     }
-    std::vector<Entry>& operator[](std::uint64_t k) {
+    Cell& operator[](std::uint64_t k) {
       if (const std::uint32_t* i = index_.find(k)) return lists_[*i];
       index_[k] = static_cast<std::uint32_t>(lists_.size());
       return lists_.emplace_back();
@@ -145,7 +176,7 @@ class BoxGrid {
 
    private:
     U64Map<std::uint32_t> index_;  // list of each cell key
-    std::vector<std::vector<Entry>> lists_;
+    std::vector<Cell> lists_;
     Eigen::Array3i low_ = Eigen::Array3i::Constant(std::numeric_limits<int>::max());
     Eigen::Array3i high_ = Eigen::Array3i::Constant(std::numeric_limits<int>::min());
   };
