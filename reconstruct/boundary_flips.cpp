@@ -373,7 +373,7 @@ std::size_t flip_boundary(const Eigen::MatrixX3d& points, Eigen::MatrixX3i& boun
   if (cells) {
     std::optional<CellsAround>& shared = around ? *around : own_around;
     if (!shared) shared.emplace(*cells);
-    cell_flips.emplace(*cells, *shared, surface_grid(points, boundary));
+    cell_flips.emplace(*cells, *shared, surface.empty_grid());
     cell_flips->add_foreign_faces(surface, edited_surface);
   }
   CellFlips* untested = cell_flips ? &*cell_flips : nullptr;

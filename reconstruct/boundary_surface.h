@@ -36,6 +36,9 @@ class BoxGrid {
  public:
   BoxGrid(const Eigen::AlignedBox3d& bounds, double cell) : origin_(bounds.min()), cell_(cell) {}
 
+  /// An empty grid with the same cells.
+  BoxGrid empty_like() const { return BoxGrid(Eigen::AlignedBox3d(origin_, origin_), cell_); }
+
   void insert(int id, const Eigen::AlignedBox3d& box) {
     const int l = level_of(box);
     const Eigen::Array3i i = index(l, box.min());
@@ -397,6 +400,9 @@ class BoundarySurface {
   /// by their boxes, dead ones allowed): where only some faces can cut the
   /// fresh ones (see flip_boundary).
   bool meets_faces(const std::vector<Triangle>& fresh, std::initializer_list<int> except, const BoxGrid& faces) const;
+  /// An empty grid with the cells of the one the faces are filed in, for a
+  /// subset of them (see meets_faces).
+  BoxGrid empty_grid() const { return faces_grid_.empty_like(); }
   /// f(q, position of q) for the points q within distance r of c (and
   /// perhaps a few on its rim), nearest first by tree node; f may return
   /// false to stop early.
