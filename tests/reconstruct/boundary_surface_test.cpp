@@ -109,7 +109,7 @@ namespace {
 // are reported, including regions reaching a far outlier, which span
 // millions of fine cells (the visit probes only the occupied ones there),
 // and boxes reported extra are those whose outward-rounded float copy meets
-// the region.
+// the region's.
 TEST(BoxGrid, VisitReportsEveryBoxMeetingTheRegionAlsoTowardsAFarOutlier) {
   sim::Random random(17);
   const auto box_at = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -129,11 +129,10 @@ TEST(BoxGrid, VisitReportsEveryBoxMeetingTheRegionAlsoTowardsAFarOutlier) {
   BoxGrid grid(box_at(Eigen::Vector3d::Constant(-2), outlier + Eigen::Vector3d::Ones()), 0.02);
   for (std::size_t i = 0; i < boxes.size(); ++i) grid.insert(static_cast<int>(i), boxes[i]);
   const auto rounded_meets = [](const Eigen::AlignedBox3d& box, const Eigen::AlignedBox3d& region) {
-    for (int k = 0; k < 3; ++k) {
-      const float lo = std::nextafter(static_cast<float>(box.min()[k]), -INFINITY);
-      const float hi = std::nextafter(static_cast<float>(box.max()[k]), INFINITY);
-      if (static_cast<double>(hi) < region.min()[k] || static_cast<double>(lo) > region.max()[k]) return false;
-    }
+    const auto down = [](double x) { return std::nextafter(static_cast<float>(x), -INFINITY); };
+    const auto up = [](double x) { return std::nextafter(static_cast<float>(x), INFINITY); };
+    for (int k = 0; k < 3; ++k)
+      if (up(box.max()[k]) < down(region.min()[k]) || down(box.min()[k]) > up(region.max()[k])) return false;
     return true;
   };
   for (int q = 0; q < 400; ++q) {
@@ -149,6 +148,49 @@ TEST(BoxGrid, VisitReportsEveryBoxMeetingTheRegionAlsoTowardsAFarOutlier) {
       }
       if (seen[i]) {
         ASSERT_TRUE(rounded_meets(boxes[i], region)) << "box " << i << " reported, query " << q;
+      }
+    }
+  }
+}
+
+// Erased boxes are never reported and the boxes filed after them are: a
+// cell's reach (the box its entries span, which skips the cell for regions
+// it misses) only grows, so it still covers whatever the cell holds. Half
+// the boxes go, then new ones come, some into the cells emptied.
+TEST(BoxGrid, VisitAfterErasuresReportsExactlyTheBoxesLeft) {
+  sim::Random random(29);
+  const auto random_point = [&] { return Eigen::Vector3d(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)); };
+  const auto random_box = [&] {
+    const Eigen::Vector3d a = random_point();
+    Eigen::AlignedBox3d box(a);
+    box.extend(a + std::pow(10.0, random.uniform(-3, -0.5)) * random_point());
+    return box;
+  };
+  std::vector<Eigen::AlignedBox3d> boxes;
+  std::vector<char> alive;
+  BoxGrid grid(Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-2), Eigen::Vector3d::Constant(2)), 0.05);
+  const auto add = [&] {
+    boxes.push_back(random_box());
+    alive.push_back(1);
+    grid.insert(static_cast<int>(boxes.size() - 1), boxes.back());
+  };
+  for (int i = 0; i < 2000; ++i) add();
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (random.uniform(0, 1) < 0.5) {
+      grid.erase(static_cast<int>(i), boxes[i]);
+      alive[i] = 0;
+    }
+  for (int i = 0; i < 1000; ++i) add();
+  for (int q = 0; q < 300; ++q) {
+    const Eigen::AlignedBox3d region = random_box();
+    std::vector<char> seen(boxes.size(), 0);
+    grid.visit(region, [&](int id) { ++seen[static_cast<std::size_t>(id)]; });
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      ASSERT_LE(seen[i], 1) << "box " << i << " reported twice, query " << q;
+      if (!alive[i]) {
+        ASSERT_EQ(seen[i], 0) << "erased box " << i << " reported, query " << q;
+      } else if (boxes[i].intersects(region)) {
+        ASSERT_EQ(seen[i], 1) << "box " << i << " missed, query " << q;
       }
     }
   }
