@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -26,6 +27,17 @@
 #include <vector>
 
 namespace scanstation {
+
+/// std::nextafter(f, −∞) and std::nextafter(f, +∞) without the library
+/// call: the box grid rounds six coordinates outwards per face filed, and
+/// the calls were a third of a surface's filing.
+inline float float_below(float f) {
+  if (std::isnan(f) || f == -std::numeric_limits<float>::infinity()) return f;
+  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
+}
+inline float float_above(float f) { return -float_below(-f); }
 
 // A loose multi-level grid over axis-aligned boxes, for "which points /
 // triangles are near this region": each box lives on the finest level where
@@ -115,8 +127,8 @@ class BoxGrid {
     FloatBox() = default;
     explicit FloatBox(const Eigen::AlignedBox3d& box) {
       for (int k = 0; k < 3; ++k) {
-        lo[k] = std::nextafter(static_cast<float>(box.min()[k]), -std::numeric_limits<float>::infinity());
-        hi[k] = std::nextafter(static_cast<float>(box.max()[k]), std::numeric_limits<float>::infinity());
+        lo[k] = float_below(static_cast<float>(box.min()[k]));
+        hi[k] = float_above(static_cast<float>(box.max()[k]));
       }
     }
     Eigen::AlignedBox3d box() const {

@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace scanstation {
@@ -151,6 +154,26 @@ TEST(BoxGrid, VisitReportsEveryBoxMeetingTheRegionAlsoTowardsAFarOutlier) {
       }
     }
   }
+}
+
+// The outward rounding of the grid's float boxes is std::nextafter's, at
+// zeros, subnormals, the largest floats, infinities and random values of
+// every magnitude.
+TEST(BoxGrid, FloatNeighboursMatchNextafter) {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> values = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(),
+                               -std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::min(),
+                               -std::numeric_limits<float>::min(), std::numeric_limits<float>::max(),
+                               -std::numeric_limits<float>::max(), inf, -inf, 1.0f, -1.0f};
+  sim::Random random(31);
+  for (int i = 0; i < 10000; ++i)
+    values.push_back(static_cast<float>(random.uniform(-1, 1) * std::pow(10.0, random.uniform(-40, 38))));
+  for (const float f : values) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(float_below(f)), std::bit_cast<std::uint32_t>(std::nextafter(f, -inf))) << f;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(float_above(f)), std::bit_cast<std::uint32_t>(std::nextafter(f, inf))) << f;
+  }
+  EXPECT_TRUE(std::isnan(float_below(std::numeric_limits<float>::quiet_NaN())));
+  EXPECT_TRUE(std::isnan(float_above(std::numeric_limits<float>::quiet_NaN())));
 }
 
 // Erased boxes are never reported and the boxes filed after them are: a
