@@ -273,11 +273,6 @@ class CellToggles {
   }
 
   bool inside(int c) const { return c >= 0 && kept_[static_cast<std::size_t>(c)]; }
-  int local(int c, int v) const {
-    int k = 0;
-    while (dt_.cells(c, k) != v) ++k;
-    return k;
-  }
   const Eigen::Vector3d& point(int v) const { return points_[static_cast<std::size_t>(v)]; }
 
   // The two faces of cell c holding its edge (u, v): opposite its other
@@ -295,25 +290,19 @@ class CellToggles {
   // beyond the hull), until it returns false. Returns false if stopped.
   template <typename Step>
   bool walk_around(int c, int u, int v, Step&& step) const {
-    int others[2];
-    off_edge(c, u, v, others);
-    others[0] = dt_.cells(c, others[0]);
-    others[1] = dt_.cells(c, others[1]);
+    int at[2];  // the local indices of c's other two vertices
+    off_edge(c, u, v, at);
     for (int direction = 0; direction < 2; ++direction) {
-      int x = c, cross = others[direction], stay = others[1 - direction];
+      int x = c, leave = at[direction], stay = dt_.cells(c, at[1 - direction]);
       for (;;) {
-        const int y = dt_.neighbors(x, local(x, cross));
+        const int y = dt_.neighbors(x, leave);
         if (!step(x, y)) return false;
         if (y < 0) break;
         if (y == c) return true;  // closed ring, all seen
-        int fresh = 0;
-        for (int i = 0; i < 4; ++i) {
-          const int g = dt_.cells(y, i);
-          if (g != u && g != v && g != stay) fresh = g;
-        }
+        const RingStep next = ring_step(dt_, y, u, v, stay);
         x = y;
-        cross = stay;
-        stay = fresh;
+        leave = next.leave;
+        stay = next.fresh;
       }
     }
     return true;

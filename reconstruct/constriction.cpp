@@ -156,31 +156,24 @@ class Constrictor {
   // instead, updated at every face change, took a third of constriction.
   bool edge_on_boundary(int c, int i, int j) const {
     const int u = vertex(c, i), v = vertex(c, j);
-    int others[2], n = 0;
+    int others[2], at[2], n = 0;  // the cell's other two vertices and their local indices
     for (int k = 0; k < 4; ++k)
-      if (k != i && k != j) others[n++] = vertex(c, k);
-    const auto local = [&](int x, int g) {
-      int k = 0;
-      while (vertex(x, k) != g) ++k;
-      return k;
-    };
+      if (k != i && k != j) {
+        at[n] = k;
+        others[n++] = vertex(c, k);
+      }
     for (int direction = 0; direction < 2; ++direction) {
-      int x = c, cross = others[direction], stay = others[1 - direction];
+      int x = c, leave = at[direction], stay = others[1 - direction];
       for (;;) {
-        const int y = dt_.neighbors(x, local(x, cross));
+        const int y = dt_.neighbors(x, leave);
         const bool kept_y = y >= 0 && kept(y);
         if (kept(x) != kept_y) return true;
         if (y < 0) break;  // open ring: the other way round
         if (y == c) return false;  // closed ring, all seen
-        // y holds u, v, stay and one vertex new to the walk.
-        int fresh = 0;
-        for (int k = 0; k < 4; ++k) {
-          const int g = vertex(y, k);
-          if (g != u && g != v && g != stay) fresh = g;
-        }
+        const RingStep step = ring_step(dt_, y, u, v, stay);
         x = y;
-        cross = stay;
-        stay = fresh;
+        leave = step.leave;
+        stay = step.fresh;
       }
     }
     return false;
