@@ -19,9 +19,10 @@ namespace {
 using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
 
 // A cell's corners and neighbours in one 32-byte row. A walk steps to a new
-// cell at every test, far from the last in memory: in the complex's
-// column-major arrays its eight numbers are eight cache lines (on the
-// 100-step chalice scan, most of the walks' time was waiting for them).
+// cell at every test, far from the last in memory: in the complex's two
+// arrays its eight numbers are two cache lines (and were eight while the
+// arrays were stored by column: on the 100-step chalice scan, most of the
+// walks' time was waiting for them).
 struct alignas(32) CellRow {
   std::array<int, 4> vertex, neighbor;
 };
@@ -38,8 +39,8 @@ struct SightData {
       points.emplace_back(P(i, 0), P(i, 1), P(i, 2));
       box += points.back().bbox();
     }
-    for (int i = 0; i < 4; ++i)  // column by column, as the complex stores them
-      for (Eigen::Index c = 0; c < dt.cells.rows(); ++c) {
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) {
         cells[static_cast<std::size_t>(c)].vertex[static_cast<std::size_t>(i)] = dt.cells(c, i);
         cells[static_cast<std::size_t>(c)].neighbor[static_cast<std::size_t>(i)] = dt.neighbors(c, i);
       }

@@ -100,8 +100,12 @@ TEST(LineOfSight, LinesThroughLatticeEdgesAndVertices) {
         Eigen::Vector3d v[4];
         for (int k = 0; k < 4; ++k) v[k] = P.row(dt.cells(c, k)).transpose();
         const bool on_path = walked[static_cast<std::size_t>(c)] >= 0;
-        if (segment_crosses_cell(p, q, v)) EXPECT_TRUE(on_path) << "point " << point << " cell " << c;
-        if (on_path) EXPECT_TRUE(segment_meets_cell(p, q, v)) << "point " << point << " cell " << c;
+        if (segment_crosses_cell(p, q, v)) {
+          EXPECT_TRUE(on_path) << "point " << point << " cell " << c;
+        }
+        if (on_path) {
+          EXPECT_TRUE(segment_meets_cell(p, q, v)) << "point " << point << " cell " << c;
+        }
         crossed += on_path;
       }
       ++lines;
