@@ -285,27 +285,12 @@ class CellToggles {
   bool boundary_face(int c, int i) const { return inside(c) != inside(dt_.neighbors(c, i)); }
 
   // Walks the ring of cells around the edge (u, v) of cell c (as
-  // constriction's §5.3 test), both ways from c when the ring is open at
-  // the convex hull: step(x, y) for each cell x and the next one y (−1
-  // beyond the hull), until it returns false. Returns false if stopped.
+  // constriction's §5.3 test): see walk_ring.
   template <typename Step>
   bool walk_around(int c, int u, int v, Step&& step) const {
-    int at[2];  // the local indices of c's other two vertices
+    int at[2];
     off_edge(c, u, v, at);
-    for (int direction = 0; direction < 2; ++direction) {
-      int x = c, leave = at[direction], stay = dt_.cells(c, at[1 - direction]);
-      for (;;) {
-        const int y = dt_.neighbors(x, leave);
-        if (!step(x, y)) return false;
-        if (y < 0) break;
-        if (y == c) return true;  // closed ring, all seen
-        const RingStep next = ring_step(dt_, y, u, v, stay);
-        x = y;
-        leave = next.leave;
-        stay = next.fresh;
-      }
-    }
-    return true;
+    return walk_ring(dt_, c, u, v, at, step);
   }
   // Whether a boundary face holds the edge (u, v) of cell c.
   bool edge_on_boundary(int c, int u, int v) const {

@@ -146,37 +146,17 @@ class Constrictor {
 
   // 3D: whether the edge (vertex(c, i), vertex(c, j)) lies on the boundary,
   // i.e. some face around it parts a kept cell from a removed or outside
-  // one. The cells around an edge form a ring, each joined to the next
-  // through a face holding the edge: entering a cell through the face that
-  // holds its vertex t, the walk leaves through the face opposite t. At the
-  // convex hull (or the edge of a local complex, whose cells around the
-  // points of a removable cell are all present) the ring is open and the
-  // walk goes both ways from c. A removable cell's edge has about five
-  // cells around it; counting boundary triangles per edge in a hash map
-  // instead, updated at every face change, took a third of constriction.
+  // one (walk_ring; a local complex holds all cells around the points of a
+  // removable cell, so its rim only opens the ring as the hull does). A
+  // removable cell's edge has about five cells around it; counting boundary
+  // triangles per edge in a hash map instead, updated at every face change,
+  // took a third of constriction.
   bool edge_on_boundary(int c, int i, int j) const {
-    const int u = vertex(c, i), v = vertex(c, j);
-    int others[2], at[2], n = 0;  // the cell's other two vertices and their local indices
+    int others[2], n = 0;  // the local indices of the cell's other two vertices
     for (int k = 0; k < 4; ++k)
-      if (k != i && k != j) {
-        at[n] = k;
-        others[n++] = vertex(c, k);
-      }
-    for (int direction = 0; direction < 2; ++direction) {
-      int x = c, leave = at[direction], stay = others[1 - direction];
-      for (;;) {
-        const int y = dt_.neighbors(x, leave);
-        const bool kept_y = y >= 0 && kept(y);
-        if (kept(x) != kept_y) return true;
-        if (y < 0) break;  // open ring: the other way round
-        if (y == c) return false;  // closed ring, all seen
-        const RingStep step = ring_step(dt_, y, u, v, stay);
-        x = y;
-        leave = step.leave;
-        stay = step.fresh;
-      }
-    }
-    return false;
+      if (k != i && k != j) others[n++] = k;
+    return !walk_ring(dt_, c, vertex(c, i), vertex(c, j), others,
+                      [&](int x, int y) { return kept(x) == (y >= 0 && kept(y)); });
   }
 
   int carve_rank(int c) const {

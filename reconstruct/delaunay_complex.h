@@ -38,18 +38,35 @@ struct DelaunayComplex {
 /// counter-clockwise seen from outside the (positively oriented) cell.
 inline constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-/// 3D: one step of a walk around the ring of cells of an edge (u, v). Cell
-/// y was entered through its face (u, v, stay), so it holds u, v, stay and
-/// one vertex new to the walk: `fresh`, the XOR of y's four vertices and
-/// the three known ones; the walk leaves y through the face opposite stay,
-/// y's local vertex `leave`. Branch-free: the search loops it replaces were
-/// a fifth of constriction's own instructions on CGAL's armadillo.
-struct RingStep {
-  int fresh, leave;
-};
-inline RingStep ring_step(const DelaunayComplex<3>& dt, int y, int u, int v, int stay) {
-  const int a = dt.cells(y, 0), b = dt.cells(y, 1), c = dt.cells(y, 2), d = dt.cells(y, 3);
-  return {a ^ b ^ c ^ d ^ u ^ v ^ stay, (b == stay) + 2 * (c == stay) + 3 * (d == stay)};
+/// 3D: walks the ring of cells around the edge (u, v) of cell c, each cell
+/// joined to the next through a face holding the edge, and calls step(x, y)
+/// for each cell x and the next one y (−1 beyond the convex hull) until it
+/// returns false. Where the ring is open (at the hull, or at the rim of a
+/// local complex) the walk goes both ways from c.
+/// k0, k1  c's local indices of its other two vertices
+/// Returns false if step stopped the walk.
+///
+/// Each step is branch-free: cell y, entered through its face (u, v, stay),
+/// holds one vertex new to the walk, the XOR of its four vertices and the
+/// three known ones, and is left through the face opposite stay. The search
+/// loops this replaces were a fifth of constriction's own instructions on
+/// CGAL's armadillo.
+template <typename Step>
+bool walk_ring(const DelaunayComplex<3>& dt, int c, int u, int v, const int (&k)[2], Step&& step) {
+  for (int direction = 0; direction < 2; ++direction) {
+    int x = c, leave = k[direction], stay = dt.cells(c, k[1 - direction]);
+    for (;;) {
+      const int y = dt.neighbors(x, leave);
+      if (!step(x, y)) return false;
+      if (y < 0) break;          // open ring: the other way round
+      if (y == c) return true;   // closed ring, all seen
+      const int a = dt.cells(y, 0), b = dt.cells(y, 1), cc = dt.cells(y, 2), d = dt.cells(y, 3);
+      leave = (b == stay) + 2 * (cc == stay) + 3 * (d == stay);
+      stay = a ^ b ^ cc ^ d ^ u ^ v ^ stay;
+      x = y;
+    }
+  }
+  return true;
 }
 
 /// Builds the Delaunay triangulation with CGAL (exact predicates; points
