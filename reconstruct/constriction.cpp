@@ -304,24 +304,31 @@ class Constrictor {
   }
 
   // Whether kept cell c may be removed (§5.2, §5.3), given its n boundary
-  // faces.
-  bool removable(int c, const int (&faces)[D + 1], int n) const {
+  // faces; without check_edge, a cell with two counts as removable before
+  // the walk around its opposite edge (see consider).
+  bool removable(int c, const int (&faces)[D + 1], int n, bool check_edge = true) const {
     if (start_ && !start_->frozen.empty() && start_->frozen[static_cast<std::size_t>(c)]) return false;
     for (int k = 0; k < n; ++k)
       if (fixed(c, faces[k])) return false;  // deleting c would delete a kept face
     if (n == 1) return !on_boundary_[static_cast<std::size_t>(vertex(c, faces[0]))];
     if constexpr (D == 3)
-      if (n == 2) return !edge_on_boundary(c, faces[0], faces[1]);
+      if (n == 2) return !check_edge || !edge_on_boundary(c, faces[0], faces[1]);
     return false;
   }
 
   // Lines 7-8: a cell whose boundary changed goes (back) into the heap when
   // removable, keyed by its γ-indicator (3D, two faces: their sum, §5.3).
+  // The walk around the opposite edge of a cell with two boundary faces
+  // waits for its turn: an edge on the boundary stays there while c is
+  // kept (cells are only removed, and c is around the edge), so a cell
+  // queued without the walk is refused then as it would have been now —
+  // the same removals — and one whose boundary changes before its turn is
+  // never walked.
   void consider(int c) {
     if (!kept(c)) return;
     int faces[D + 1];
     const int n = boundary_faces(c, faces);
-    if (!removable(c, faces, n)) return;
+    if (!removable(c, faces, n, false)) return;
     std::uint8_t mask = 0;
     for (int k = 0; k < n; ++k) mask = static_cast<std::uint8_t>(mask | 1u << faces[k]);
     const Candidate candidate{Candidate::order_of(key(c, faces, n)), c, state_[static_cast<std::size_t>(c)], mask};
