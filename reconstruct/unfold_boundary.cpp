@@ -144,7 +144,7 @@ class Unfolder {
     const std::size_t before = folds(inside, loop), after = folds(DirectedEdges(*flat), loop);
     if (after >= before) return 0;
     for (const int f : patch) surface_.remove_face(f);
-    if (!valid(*flat, loop, faces)) {
+    if (!valid(*flat, loop, faces, plane->normal)) {
       for (const Triangle& t : faces) surface_.add_face(t);
       return 0;
     }
@@ -254,7 +254,8 @@ class Unfolder {
   // triangle that was one of them needs no test against the rest: neither
   // changed, and they met properly before (with 0.1% noise on CGAL's 26
   // meshes, 57k of 83k flat triangles tested were such).
-  bool valid(const std::vector<Triangle>& flat, const std::vector<int>& loop, const std::vector<Triangle>& before) const {
+  bool valid(const std::vector<Triangle>& flat, const std::vector<int>& loop, const std::vector<Triangle>& before,
+             const Eigen::Vector3d& normal) const {
     std::map<int, int> next;  // along the loop
     for (std::size_t i = 0; i < loop.size(); ++i) next[loop[i]] = loop[(i + 1) % loop.size()];
     for (const Triangle& t : flat) {
@@ -268,12 +269,36 @@ class Unfolder {
     const TriangleSet was(before);
     for (const Triangle& t : flat)  // one by one: each visits only the faces near it
       if (!was.contains(t) && surface_.meets_surface({t}, {})) return false;
+    if (embedded_over_axis(flat, loop, normal)) return true;
     std::vector<Eigen::AlignedBox3d> boxes;  // each once, not once per pair
     for (const Triangle& t : flat) boxes.push_back(surface_.box({t[0], t[1], t[2]}));
     for (std::size_t i = 0; i < flat.size(); ++i)
       for (std::size_t j = i + 1; j < flat.size(); ++j)
         if (boxes[i].intersects(boxes[j]) && surface_.improper(flat[i], flat[j])) return false;
     return true;
+  }
+
+  // Whether the flat triangles meet one another properly, told without
+  // testing pairs: dropped onto the coordinate plane the normal is most
+  // along (exact: one coordinate left out), every triangle turns the way the
+  // normal says and the loop is simple. Then each point of the plane off
+  // the edges is covered by as many triangles as the loop winds around it
+  // (all count positively), 0 or 1: the triangles meet only in shared
+  // corners and edges there, and so in space, where each lies over its
+  // shadow. On laser profiles (100 meridians of 1000 points, 0.1% noise)
+  // the pairwise test below was 8% of unfolding's instructions.
+  bool embedded_over_axis(const std::vector<Triangle>& flat, const std::vector<int>& loop,
+                          const Eigen::Vector3d& normal) const {
+    int k = 0;
+    normal.cwiseAbs().maxCoeff(&k);
+    const int i = (k + 1) % 3, j = (k + 2) % 3;  // (i, j, k) a right-handed frame
+    const auto shadow = [&](int v) { return Kernel::Point_2(P_(v, i), P_(v, j)); };
+    const CGAL::Orientation turn = normal[k] > 0 ? CGAL::COUNTERCLOCKWISE : CGAL::CLOCKWISE;
+    for (const Triangle& t : flat)
+      if (CGAL::orientation(shadow(t[0]), shadow(t[1]), shadow(t[2])) != turn) return false;
+    std::vector<Kernel::Point_2> polygon;
+    for (const int v : loop) polygon.push_back(shadow(v));
+    return CGAL::is_simple_2(polygon.begin(), polygon.end(), Kernel());
   }
 
   const Eigen::MatrixX3d& P_;
