@@ -43,7 +43,7 @@ inline constexpr int kFace3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}
 /// for each cell x and the next one y (−1 beyond the convex hull) until it
 /// returns false. Where the ring is open (at the hull, or at the rim of a
 /// local complex) the walk goes both ways from c.
-/// k0, k1  c's local indices of its other two vertices
+/// k       the local indices in c of its other two vertices
 /// Returns false if step stopped the walk.
 ///
 /// Each step is branch-free: cell y, entered through its face (u, v, stay),
