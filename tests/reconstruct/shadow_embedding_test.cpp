@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,7 @@ Disk random_disk(sim::Random& random, double bumps) {
   Disk disk;
   std::vector<Eigen::Vector2d> points;
   for (int k = 0; k < 24; ++k) {
-    const double a = (k + random.uniform(-0.2, 0.2)) * 2.0 * 3.14159265358979323846 / 24.0;
+    const double a = (k + random.uniform(-0.2, 0.2)) * 2.0 * std::numbers::pi / 24.0;
     points.emplace_back(std::cos(a), std::sin(a));
   }
   for (double x = -0.8; x <= 0.8; x += 0.2)
@@ -70,9 +71,9 @@ Disk random_disk(sim::Random& random, double bumps) {
 
 // The disk turned by `degrees` about an axis in the plane z = 0.
 void tilt(Disk& disk, double degrees, double axis_degrees) {
-  const double a = axis_degrees * 3.14159265358979323846 / 180.0;
+  const double a = axis_degrees * std::numbers::pi / 180.0;
   const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(degrees * 3.14159265358979323846 / 180.0, Eigen::Vector3d(std::cos(a), std::sin(a), 0.0))
+      Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, Eigen::Vector3d(std::cos(a), std::sin(a), 0.0))
           .toRotationMatrix();
   disk.P = (disk.P * R.transpose()).eval();
   disk.normal = R * disk.normal;
@@ -136,7 +137,7 @@ TEST(ShadowEmbedding, AFlatStripWoundTwiceIsNotPassed) {
   Disk strip;
   strip.P.resize(2 * (kSteps + 1), 3);
   for (int k = 0; k <= kSteps; ++k) {
-    const double a = 4.0 * 3.14159265358979323846 * k / kSteps;
+    const double a = 4.0 * std::numbers::pi * k / kSteps;
     strip.P.row(2 * k) << 0.5 * std::cos(a), 0.5 * std::sin(a), 0.0;
     strip.P.row(2 * k + 1) << std::cos(a), std::sin(a), 0.0;
   }
