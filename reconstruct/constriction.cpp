@@ -253,8 +253,9 @@ class Constrictor {
   }
   // With the memo every key takes the indicator as the memo holds it, in
   // single precision, whether remembered or not: the selection rule needs
-  // no more (an indicator in [−1, 1] to about 6e-8), and half the memo's
-  // bytes are half the pages a run faults in.
+  // no more (±(1 − r/R) lies in [−1, 1], kept to about 6e-8), and a cell's
+  // four values in 16 bytes instead of 32 put the keys of cells near each
+  // other in fewer cache lines (docs/design.md).
   double face_gamma(int c, int i) const {
     if (gamma_known_.empty()) return gamma_indicator(dt_, c, i);
     if (gamma_known_[static_cast<std::size_t>(c)] >> i & 1u)
