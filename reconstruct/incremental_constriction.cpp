@@ -11,7 +11,7 @@
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
-#include <CGAL/hilbert_sort.h>
+#include <CGAL/spatial_sort.h>
 #include <CGAL/property_map.h>
 #include <Eigen/Geometry>
 
@@ -982,10 +982,15 @@ struct IncrementalConstriction::State {
     input.reserve(static_cast<std::size_t>(batch_points.rows()));
     for (Eigen::Index i = 0; i < batch_points.rows(); ++i)
       input.emplace_back(Kernel::Point_3(batch_points(i, 0), batch_points(i, 1), batch_points(i, 2)), static_cast<int>(i));
-    // Hilbert order without the random rounds of spatial_sort (which suit
-    // a triangulation built from nothing): each point is located from the
-    // last, in a triangulation that already spans the batch.
-    CGAL::hilbert_sort(input.begin(), input.end(), SortTraits());
+    // CGAL's BRIO order (random rounds, each along a Hilbert curve), as
+    // for a triangulation built from nothing: the first rounds spread over
+    // the batch, and the later points then mostly fall inside their cells
+    // instead of each conflicting with the long cells that span the part
+    // not scanned yet from a scan front (a plain Hilbert order: insertion
+    // 4.7–4.9 → 4.2–4.3 ms of a 100k scan-order batch, and new_cells 1.5 →
+    // 1.0 ms; the same order by brio_hilbert_sort made new_cells 3.9 ms).
+    // Its shuffle has a fixed seed: the order depends on the batch alone.
+    CGAL::spatial_sort(input.begin(), input.end(), SortTraits());
     if (started && points.size() >= 64 && points.size() >= 2 * hint_built_at) build_hint_grid();
     // The grid serves a scattered batch only: where consecutive points (in
     // Hilbert order) lie within a grid cell of each other on average, as
