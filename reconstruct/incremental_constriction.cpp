@@ -406,11 +406,23 @@ struct IncrementalConstriction::State {
     std::vector<Vertex> vertices;  // in the order of their first cells in the fill
     std::vector<int> ids;          // their numbers (info)
     std::vector<int> parent;
+    std::vector<int> size;         // of the set, at its root
     std::size_t cells = 0;         // region[0, cells) are in
     int find(int a) {
       while (parent[static_cast<std::size_t>(a)] != a)
         a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
       return a;
+    }
+    // The smaller set under the larger: its trees stay shallow (a root of
+    // a fill of 25k cells was otherwise reached through long chains).
+    // Which point ends as root does not matter to the callers.
+    void unite(int a, int b) {
+      a = find(a);
+      b = find(b);
+      if (a == b) return;
+      if (size[static_cast<std::size_t>(a)] < size[static_cast<std::size_t>(b)]) std::swap(a, b);
+      parent[static_cast<std::size_t>(b)] = a;
+      size[static_cast<std::size_t>(a)] += size[static_cast<std::size_t>(b)];
     }
   };
   // A point's number in p (p.vertices are left out when given by number).
@@ -420,6 +432,7 @@ struct IncrementalConstriction::State {
       n = static_cast<int>(p.ids.size());
       p.ids.push_back(point);
       p.parent.push_back(n);
+      p.size.push_back(1);
     }
     return n;
   }
@@ -432,8 +445,8 @@ struct IncrementalConstriction::State {
   void add_cells(FillParts& p, const std::vector<Cell>& region) {
     for (; p.cells < region.size(); ++p.cells) {
       const Cell c = region[p.cells];
-      const int a = p.find(fill_number(p, c->vertex(0)));
-      for (int k = 1; k < 4; ++k) p.parent[static_cast<std::size_t>(p.find(fill_number(p, c->vertex(k))))] = a;
+      const int a = fill_number(p, c->vertex(0));
+      for (int k = 1; k < 4; ++k) p.unite(a, fill_number(p, c->vertex(k)));
     }
   }
   void forget(const FillParts& p) {
@@ -1083,9 +1096,8 @@ struct IncrementalConstriction::State {
   void new_cells(const std::vector<Vertex>& fresh, std::vector<Cell>& front, std::vector<Cell>& rest) {
     FillParts zones;
     for (std::size_t k = 0; k < zone_vertex.size(); ++k) {
-      const int a = zones.find(fill_number(zones, zone_vertex[k]->info()));
-      for (std::size_t j = zone_from[k]; j < zone_from[k + 1]; ++j)
-        zones.parent[static_cast<std::size_t>(zones.find(fill_number(zones, zone_points[j])))] = a;
+      const int a = fill_number(zones, zone_vertex[k]->info());
+      for (std::size_t j = zone_from[k]; j < zone_from[k + 1]; ++j) zones.unite(a, fill_number(zones, zone_points[j]));
     }
     const auto part = [&](Vertex v) { return static_cast<std::size_t>(zones.find(fill_vertex[static_cast<std::size_t>(v->info())])); };
     std::vector<std::size_t> fresh_in(zones.ids.size(), 0);
