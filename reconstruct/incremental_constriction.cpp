@@ -407,6 +407,7 @@ struct IncrementalConstriction::State {
     std::vector<int> ids;          // their numbers (info)
     std::vector<int> parent;
     std::vector<int> size;         // of the set, at its root
+    std::vector<int> cell_point;   // per cell in, the number of its vertex 0
     std::size_t cells = 0;         // region[0, cells) are in
     int find(int a) {
       while (parent[static_cast<std::size_t>(a)] != a)
@@ -446,6 +447,7 @@ struct IncrementalConstriction::State {
     for (; p.cells < region.size(); ++p.cells) {
       const Cell c = region[p.cells];
       const int a = fill_number(p, c->vertex(0));
+      p.cell_point.push_back(a);
       for (int k = 1; k < 4; ++k) p.unite(a, fill_number(p, c->vertex(k)));
     }
   }
@@ -1218,8 +1220,9 @@ struct IncrementalConstriction::State {
       // the order of their first cells.
       std::vector<int> label(parts.vertices.size(), -1);
       std::vector<std::vector<Cell>> pieces;
-      for (const Cell c : region) {
-        int& l = label[static_cast<std::size_t>(parts.find(fill_vertex[static_cast<std::size_t>(c->vertex(0)->info())]))];
+      for (std::size_t i = 0; i < region.size(); ++i) {  // the check saw every cell (ball)
+        const Cell c = region[i];
+        int& l = label[static_cast<std::size_t>(parts.find(parts.cell_point[i]))];
         if (l < 0) {
           l = static_cast<int>(pieces.size());
           pieces.emplace_back();
