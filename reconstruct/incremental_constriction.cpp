@@ -1003,7 +1003,7 @@ struct IncrementalConstriction::State {
     // instead of each conflicting with the long cells that span the part
     // not scanned yet from a scan front (a plain Hilbert order: insertion
     // 4.7–4.9 → 4.2–4.3 ms of a 100k scan-order batch, and new_cells 1.5 →
-    // 1.0 ms; the same order by brio_hilbert_sort made new_cells 3.9 ms).
+    // 1.0 ms; brio_hilbert_sort's order made new_cells 3.9 ms).
     // Its shuffle has a fixed seed: the order depends on the batch alone.
     CGAL::spatial_sort(input.begin(), input.end(), SortTraits());
     if (started && points.size() >= 64 && points.size() >= 2 * hint_built_at) build_hint_grid();
