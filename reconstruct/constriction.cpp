@@ -260,7 +260,8 @@ class Constrictor {
     if (gamma_known_.empty()) return gamma_indicator(dt_, c, i);
     if (gamma_known_[static_cast<std::size_t>(c)] >> i & 1u)
       return gamma_memo_[4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(i)];
-    return static_cast<float>(gamma_indicator(dt_, c, i));
+    remember_gamma(c, i, gamma_indicator(dt_, c, i));  // a face decided before this run (GuideMemo)
+    return gamma_memo_[4 * static_cast<std::size_t>(c) + static_cast<std::size_t>(i)];
   }
 
   // §5.7: faces that must stay, flagged per cell face.
@@ -273,6 +274,12 @@ class Constrictor {
       guide_known_.assign(static_cast<std::size_t>(cells_), 0);
       gamma_known_.assign(static_cast<std::size_t>(cells_), 0);
       gamma_memo_.reset(new float[4 * static_cast<std::size_t>(cells_)]);  // uninitialised: see remember_gamma
+      if (const std::vector<GuideMemo>* guides = memo()) {
+        for (std::size_t c = 0; c < static_cast<std::size_t>(cells_); ++c) {
+          guide_known_[c] = (*guides)[c].known;
+          fixed_[c] = (*guides)[c].keep;
+        }
+      }
     }
     if (options_.keep.rows() == 0) return;
     if (options_.keep.cols() != D) throw InvalidInput("kept faces need " + std::to_string(D) + " vertex indices each");
@@ -391,7 +398,18 @@ class Constrictor {
     }
   }
 
+  // The guide's decisions to read and update (ConstrictionStart::guides), else null.
+  std::vector<GuideMemo>* memo() const {
+    if (D != 3 || !start_ || !start_->guides || !options_.guide_c1 || options_.keep.rows() > 0) return nullptr;
+    if (start_->guides->size() != static_cast<std::size_t>(cells_))
+      throw InvalidInput("guide decisions: one per Delaunay cell expected, got " + std::to_string(start_->guides->size()) +
+                         " for " + std::to_string(cells_) + " cells");
+    return start_->guides;
+  }
+
   Constriction<D> result() const {
+    if (std::vector<GuideMemo>* guides = memo())
+      for (std::size_t c = 0; c < guides->size(); ++c) (*guides)[c] = {guide_known_[c], fixed_[c]};
     std::vector<char> kept(static_cast<std::size_t>(cells_));
     for (std::size_t c = 0; c < kept.size(); ++c) kept[c] = static_cast<char>(state_[c] & kKept);
     Constriction<D> out = pruned_boundary(dt_, std::move(kept));

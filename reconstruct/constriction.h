@@ -6,6 +6,7 @@
 #include "reconstruct/delaunay_complex.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -77,16 +78,30 @@ struct Constriction {
 Constriction<2> constrict(const DelaunayComplex<2>& complex, const ConstrictionOptions& options = {});
 Constriction<3> constrict(const DelaunayComplex<3>& complex, const ConstrictionOptions& options = {});
 
+/// The γ-guide's decisions (ConstrictionOptions::guide_c1) on the four faces
+/// of one tetrahedron: functions of the cell and its neighbour across the
+/// face (none: the convex hull) alone. Whoever keeps them from one
+/// constriction to the next clears a face's bits where its neighbour changed.
+struct GuideMemo {
+  std::uint8_t known = 0;  ///< bit i: the guide decided face i
+  std::uint8_t keep = 0;   ///< bit i: the guide kept face i
+};
+
 /// Where constriction of part of a complex starts (incremental use,
 /// reconstruct/incremental_constriction.h), one flag per cell / point:
 /// kept    0: the cell is already removed (outside); empty: every cell is kept
 ///         (the convex hull, line 2 of Algorithm 5.1)
 /// frozen  1: the cell is never removed; empty: none is
 /// exempt  1: the point need not reach the boundary for constriction to stop
+/// guides  if given, one GuideMemo per cell: read at the start, so that a
+///         face an earlier constriction decided is not decided again, and
+///         updated with this one's decisions (3D, γ-guided, no faces to
+///         keep; ignored otherwise)
 struct ConstrictionStart {
   std::vector<char> kept;
   std::vector<char> frozen;
   std::vector<char> exempt;
+  std::vector<GuideMemo>* guides = nullptr;
 };
 
 /// Constriction (as above) from a given state: the boundary is the faces

@@ -41,6 +41,11 @@ struct CellInfo {
   unsigned visit = 0;   // the walk that last reached the cell (State::star, State::joinable)
   unsigned filled = 0;  // the batch that filled the cell (made it, kept, to be re-decided); 0: none
   char kept = 1;
+  // The γ-guide's decisions on the cell's faces so far, each kept while the
+  // neighbour across the face lives (insert_in_zone forgets it where the
+  // neighbour changes). Most of a scan-order batch's region was re-decided
+  // in the batch before.
+  GuideMemo guides;
 };
 // A vertex holds its point's index (info) and the last conflict zone that
 // listed it (State::zone_points): marked in the vertex, which the
@@ -93,6 +98,7 @@ struct LocalComplex {
   ConstrictionStart start;
   std::vector<Cell> cells;
   std::vector<Vertex> vertices;
+  std::vector<GuideMemo> guides;  // of the cells
   std::size_t region = 0;         // cells [0, region) are re-decided
   std::size_t core_vertices = 0;  // vertices [0, core_vertices) are those of the region cells
 };
@@ -117,9 +123,10 @@ struct IncrementalConstriction::State {
   std::vector<int> f_now;               // scratch: f(v) while a fill is checked, else −1
   std::vector<char> pinched_now;        // scratch: the fill pinches the boundary at v
   std::vector<int> fill_vertex;         // scratch: a point's number in FillParts, else −1
-  // scratch: every finite cell around the point is in the fill, so its
-  // boundary triangles are its convex hull triangles (a disk: not pinched),
-  // inner[v] of them; −1 otherwise
+  // scratch, for one repair: every finite cell around the point is in the
+  // fill, so its boundary triangles are its convex hull triangles (a disk:
+  // not pinched), inner[v] of them, and its star is in its part's local
+  // complex; −1 otherwise
   std::vector<int> inner;
   std::vector<int> inner_points;        // the points with inner set
   std::vector<int> repaired_by;         // scratch: the last region of this batch's repair holding the point, else −1
@@ -557,7 +564,10 @@ struct IncrementalConstriction::State {
     return ball;
   }
 
-  LocalComplex local_complex(const std::vector<Cell>& region, bool surround) {
+  // With `part`, the region is one connected part of the fill as the fill
+  // check left it: the cells around a point inner to the fill (inner) are
+  // all in it, so its star adds nothing to the surround and is not read.
+  LocalComplex local_complex(const std::vector<Cell>& region, bool surround, bool part) {
     LocalComplex L;
     const auto add_cell = [&](Cell c) {
       c->info().local = static_cast<int>(L.cells.size());
@@ -580,6 +590,7 @@ struct IncrementalConstriction::State {
     L.core_vertices = L.vertices.size();
     if (surround) {
       for (std::size_t k = 0; k < L.core_vertices; ++k) {
+        if (part && inner[static_cast<std::size_t>(L.vertices[k]->info())] >= 0) continue;
         for (const Cell c : star(L.vertices[k]))
           if (c->info().local < 0) add_cell(c);
       }
@@ -592,9 +603,11 @@ struct IncrementalConstriction::State {
     L.dt.cells.resize(cells, 4);
     L.dt.neighbors.resize(cells, 4);
     L.start.kept.resize(L.cells.size());
+    L.guides.resize(L.cells.size());
     for (Eigen::Index i = 0; i < cells; ++i) {
       const Cell c = L.cells[static_cast<std::size_t>(i)];
       L.start.kept[static_cast<std::size_t>(i)] = c->info().kept;
+      L.guides[static_cast<std::size_t>(i)] = c->info().guides;
       for (int k = 0; k < 4; ++k) {
         L.dt.cells(i, k) = local_vertex[static_cast<std::size_t>(c->vertex(k)->info())];
         const Cell n = c->neighbor(k);
@@ -713,10 +726,13 @@ struct IncrementalConstriction::State {
   // keeps a locked result too when no frozen cell is near the points that
   // locked (frozen_near: releasing a ring would not bring them on). Returns
   // whether the result was kept.
-  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats, int piece = -1) {
-    const LocalComplex L = local_complex(region, surround);
+  bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats, int piece = -1,
+                        bool part = false) {
+    LocalComplex L = local_complex(region, surround, part);
+    L.start.guides = &L.guides;
     stats.tetrahedra_touched += L.cells.size();
     const Constriction<3> r = constrict(L.dt, L.start, with_sight_lines(L, stats));
+    for (std::size_t i = 0; i < L.region; ++i) L.cells[i]->info().guides = L.guides[i];
     std::vector<char> interior(L.vertices.size(), 0);
     for (const int v : r.interior_vertices) interior[static_cast<std::size_t>(v)] = 1;
     bool reached = true;
@@ -970,6 +986,9 @@ struct IncrementalConstriction::State {
     if (use_hints) hint_grid[hint_key(p)] = hint;
     for (std::size_t k = 0; k < hole_facets.size(); ++k) {
       const HoleFacet& h = hole_facets[k];
+      GuideMemo& outer = h.outer->info().guides;  // its neighbour there is new
+      outer.known &= static_cast<std::uint8_t>(~(1u << h.mirror));
+      outer.keep &= static_cast<std::uint8_t>(~(1u << h.mirror));
       CellInfo& info = h.outer->neighbor(h.mirror)->info();
       if (joined) {
         info.kept = static_cast<char>(h.kept != (static_cast<int>(k) == tip));
@@ -1211,8 +1230,10 @@ struct IncrementalConstriction::State {
     std::vector<Cell> region = with_margin(std::move(front), rest);
     FillParts parts;
     const bool ball = fill_to_ball(region, parts);
-    for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = -1;
-    inner_points.clear();
+    const auto forget_inner = [&] {
+      for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = -1;
+      inner_points.clear();
+    };
     if (ball) {
       // Each connected part of the fill is constricted on its own, so a part
       // that locks releases rings of kept cells around itself only, and the
@@ -1238,18 +1259,20 @@ struct IncrementalConstriction::State {
           // A ring may take in cells of a later part: that part's own
           // constriction then starts from what this one left.
           const bool last = ring == kUnfreezeRings;
-          if (constrict_region(piece, true, last, s, static_cast<int>(p)) || last) {
+          if (constrict_region(piece, true, last, s, static_cast<int>(p), ring == 0) || last) {
             s.rings = std::max(s.rings, ring);
             break;
           }
           grow(piece, [](Cell c) { return c->info().kept != 0; });
         }
       }
+      forget_inner();
       // The joined points' cone triangles too (some of them re-decided in a front).
       s.faces_changed = std::min(patch_size() + joined_faces, static_cast<std::size_t>(corners / 3));
       return;
     }
     forget(parts);
+    forget_inner();
     s.wider_repair = true;
     ++wider;
     constrict_all(s);
