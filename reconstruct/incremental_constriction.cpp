@@ -415,6 +415,8 @@ struct IncrementalConstriction::State {
     std::vector<int> parent;
     std::vector<int> size;         // of the set, at its root
     std::vector<int> cell_point;   // per cell in, the number of its vertex 0
+    std::vector<unsigned> seen;    // per point: the last call of add_cells that listed it
+    unsigned call = 0;
     std::size_t cells = 0;         // region[0, cells) are in
     int find(int a) {
       while (parent[static_cast<std::size_t>(a)] != a)
@@ -450,13 +452,31 @@ struct IncrementalConstriction::State {
     if (p.ids.size() != before) p.vertices.push_back(v);
     return n;
   }
-  void add_cells(FillParts& p, const std::vector<Cell>& region) {
+  // Adds region[p.cells, end) to p; returns the distinct points of those
+  // cells, in the order they first appear there.
+  std::vector<Vertex> add_cells(FillParts& p, const std::vector<Cell>& region) {
+    std::vector<Vertex> added;
+    ++p.call;
     for (; p.cells < region.size(); ++p.cells) {
       const Cell c = region[p.cells];
-      const int a = fill_number(p, c->vertex(0));
-      p.cell_point.push_back(a);
-      for (int k = 1; k < 4; ++k) p.unite(a, fill_number(p, c->vertex(k)));
+      int a = -1;
+      for (int k = 0; k < 4; ++k) {
+        const Vertex v = c->vertex(k);
+        const int n = fill_number(p, v);
+        if (static_cast<std::size_t>(n) == p.seen.size()) p.seen.push_back(0);
+        if (p.seen[static_cast<std::size_t>(n)] != p.call) {
+          p.seen[static_cast<std::size_t>(n)] = p.call;
+          added.push_back(v);
+        }
+        if (k == 0) {
+          a = n;
+          p.cell_point.push_back(a);
+        } else {
+          p.unite(a, n);
+        }
+      }
     }
+    return added;
   }
   void forget(const FillParts& p) {
     for (const int id : p.ids) fill_vertex[static_cast<std::size_t>(id)] = -1;
@@ -528,15 +548,14 @@ struct IncrementalConstriction::State {
       }
     };
     bool ball = false;
-    std::size_t checked = 0, pockets_checked = 0;
+    std::size_t pockets_checked = 0;
     std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
       if (!local(region)) break;  // the whole is constricted again
-      const std::vector<Cell> filled(region.begin() + static_cast<std::ptrdiff_t>(checked), region.end());
-      checked = region.size();
       // A point's pinch changes only with its star: the candidates are the
-      // points refreshed now and those pinched before.
-      std::vector<Vertex> candidates = vertices_of(filled);
+      // points of the cells filled since the last round (added to the
+      // parts now) and those pinched before.
+      std::vector<Vertex> candidates = add_cells(parts, region);
       refresh(candidates);
       candidates.insert(candidates.end(), pinched.begin(), pinched.end());
       pinched.clear();
