@@ -584,9 +584,11 @@ struct IncrementalConstriction::State {
   }
 
   // With `part`, the region is one connected part of the fill as the fill
-  // check left it: the cells around a point inner to the fill (inner) are
-  // all in it, so its star adds nothing to the surround and is not read.
-  LocalComplex local_complex(const std::vector<Cell>& region, bool surround, bool part) {
+  // check left it and `part` its points in the order of their first cells
+  // there (as FillParts numbered them), so they are not read off the cells
+  // again; and the cells around a point inner to the fill (inner) are all
+  // in the part, so its star adds nothing to the surround and is not read.
+  LocalComplex local_complex(const std::vector<Cell>& region, bool surround, const std::vector<Vertex>* part) {
     LocalComplex L;
     const auto add_cell = [&](Cell c) {
       c->info().local = static_cast<int>(L.cells.size());
@@ -605,7 +607,13 @@ struct IncrementalConstriction::State {
     };
     for (const Cell c : region) add_cell(c);
     L.region = L.cells.size();
-    add_vertices(0);
+    if (part) {
+      L.vertices = *part;
+      for (std::size_t k = 0; k < L.vertices.size(); ++k)
+        local_vertex[static_cast<std::size_t>(L.vertices[k]->info())] = static_cast<int>(k);
+    } else {
+      add_vertices(0);
+    }
     L.core_vertices = L.vertices.size();
     if (surround) {
       for (std::size_t k = 0; k < L.core_vertices; ++k) {
@@ -746,7 +754,7 @@ struct IncrementalConstriction::State {
   // locked (frozen_near: releasing a ring would not bring them on). Returns
   // whether the result was kept.
   bool constrict_region(const std::vector<Cell>& region, bool surround, bool final, BatchStats& stats, int piece = -1,
-                        bool part = false) {
+                        const std::vector<Vertex>* part = nullptr) {
     LocalComplex L = local_complex(region, surround, part);
     L.start.guides = &L.guides;
     stats.tetrahedra_touched += L.cells.size();
@@ -1260,6 +1268,7 @@ struct IncrementalConstriction::State {
       // the order of their first cells.
       std::vector<int> label(parts.vertices.size(), -1);
       std::vector<std::vector<Cell>> pieces;
+      std::vector<std::vector<Vertex>> piece_vertices;
       for (std::size_t i = 0; i < region.size(); ++i) {  // the check saw every cell (ball)
         const Cell c = region[i];
         int& l = label[static_cast<std::size_t>(parts.find(parts.cell_point[i]))];
@@ -1269,6 +1278,12 @@ struct IncrementalConstriction::State {
         }
         pieces[static_cast<std::size_t>(l)].push_back(c);
       }
+      // Each part's points in the order of their first cells: a point's
+      // cells are all in its part, so the fill's order restricted to it.
+      piece_vertices.resize(pieces.size());
+      for (std::size_t k = 0; k < parts.vertices.size(); ++k)
+        piece_vertices[static_cast<std::size_t>(label[static_cast<std::size_t>(parts.find(static_cast<int>(k)))])].push_back(
+            parts.vertices[k]);
       forget(parts);
       for (std::size_t p = 0; p < pieces.size(); ++p) {
         std::vector<Cell>& piece = pieces[p];
@@ -1278,7 +1293,7 @@ struct IncrementalConstriction::State {
           // A ring may take in cells of a later part: that part's own
           // constriction then starts from what this one left.
           const bool last = ring == kUnfreezeRings;
-          if (constrict_region(piece, true, last, s, static_cast<int>(p), ring == 0) || last) {
+          if (constrict_region(piece, true, last, s, static_cast<int>(p), ring == 0 ? &piece_vertices[p] : nullptr) || last) {
             s.rings = std::max(s.rings, ring);
             break;
           }
