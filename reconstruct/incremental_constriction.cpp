@@ -264,30 +264,31 @@ struct IncrementalConstriction::State {
         changed.push_back(static_cast<int>(id));
       }
     }
-    std::vector<int> kept_points;
-    std::vector<std::array<std::size_t, 2>> ranges;
-    std::vector<int> on_hull;
-    std::vector<Cell> cells;
-    for (const int id : starred) {
-      int& slot = star_slot[static_cast<std::size_t>(id)];
-      if (star_changed[static_cast<std::size_t>(id)] || !star_used[static_cast<std::size_t>(slot)]) {
-        slot = -1;
+    // Kept stars move down in place, in their order (a star's slot is its
+    // entry in `starred`, and the ranges follow that order).
+    std::size_t points_kept = 0, cells_kept = 0;
+    for (std::size_t slot = 0; slot < starred.size(); ++slot) {
+      const int id = starred[slot];
+      if (star_changed[static_cast<std::size_t>(id)] || !star_used[slot]) {
+        star_slot[static_cast<std::size_t>(id)] = -1;
         continue;
       }
-      const auto& r = star_range[static_cast<std::size_t>(slot)];
-      ranges.push_back({cells.size(), cells.size() + (r[1] - r[0])});
-      cells.insert(cells.end(), star_cells.begin() + static_cast<std::ptrdiff_t>(r[0]),
-                   star_cells.begin() + static_cast<std::ptrdiff_t>(r[1]));
-      on_hull.push_back(star_hull[static_cast<std::size_t>(slot)]);
-      slot = static_cast<int>(kept_points.size());
-      kept_points.push_back(id);
+      const auto [from, to] = star_range[slot];
+      std::copy(star_cells.begin() + static_cast<std::ptrdiff_t>(from), star_cells.begin() + static_cast<std::ptrdiff_t>(to),
+                star_cells.begin() + static_cast<std::ptrdiff_t>(cells_kept));
+      star_range[points_kept] = {cells_kept, cells_kept + (to - from)};
+      star_hull[points_kept] = star_hull[slot];
+      starred[points_kept] = id;
+      star_slot[static_cast<std::size_t>(id)] = static_cast<int>(points_kept);
+      cells_kept += to - from;
+      ++points_kept;
     }
     for (const int id : changed) star_changed[static_cast<std::size_t>(id)] = 0;
-    starred = std::move(kept_points);
-    star_range = std::move(ranges);
-    star_hull = std::move(on_hull);
-    star_used.assign(starred.size(), 0);
-    star_cells = std::move(cells);
+    starred.resize(points_kept);
+    star_range.resize(points_kept);
+    star_hull.resize(points_kept);
+    star_used.assign(points_kept, 0);
+    star_cells.resize(cells_kept);
   }
 
   // The boundary triangles at each of `at` (as their edges opposite the
