@@ -620,6 +620,48 @@ TEST(Constriction3, GuidedConstrictionRaisesRecall) {
   }
 }
 
+// The γ-guide's decisions handed from one constriction to the next
+// (ConstrictionStart::guides, as the incremental constriction keeps them)
+// change nothing: the same boundary as deciding every face afresh, and a
+// second run with the first run's decisions has none left to make.
+TEST(Constriction3, GuideDecisionsFromAnEarlierRunChangeNothing) {
+  const PointCloud sample = sim::sample_surface(sim::relief_mask(30, 72), 3000, 7, 0.002);
+  const DelaunayComplex<3> dt = delaunay_complex(sample.positions);
+  const ConstrictionOptions options = constriction_options(ReconstructionOptions{});
+  ASSERT_TRUE(options.guide_c1);
+  std::vector<GuideMemo> memo(static_cast<std::size_t>(dt.cells.rows()));
+  ConstrictionStart start;
+  start.guides = &memo;
+  const Constriction<3> plain = constrict(dt, ConstrictionStart{}, options);
+  const Constriction<3> first = constrict(dt, start, options);
+  ASSERT_EQ(first.boundary.rows(), plain.boundary.rows());
+  EXPECT_TRUE(first.boundary == plain.boundary);
+  EXPECT_EQ(first.guide_faces, plain.guide_faces);
+  std::size_t decided = 0, kept = 0;
+  for (const GuideMemo& m : memo) {
+    decided += static_cast<std::size_t>(std::popcount(m.known));
+    kept += static_cast<std::size_t>(std::popcount(m.keep));
+    EXPECT_EQ(m.keep & ~m.known, 0);  // only decided faces are kept
+  }
+  EXPECT_GT(decided, kept);
+  EXPECT_GE(kept, first.guide_faces);  // a kept face is recorded in both its cells (one on the hull)
+  EXPECT_GT(first.guide_faces, 0u);
+
+  const std::vector<GuideMemo> before = memo;
+  const Constriction<3> second = constrict(dt, start, options);
+  ASSERT_EQ(second.boundary.rows(), first.boundary.rows());
+  EXPECT_TRUE(second.boundary == first.boundary);
+  EXPECT_EQ(second.guide_faces, 0u);
+  for (std::size_t c = 0; c < memo.size(); ++c) {
+    EXPECT_EQ(memo[c].known, before[c].known) << c;
+    EXPECT_EQ(memo[c].keep, before[c].keep) << c;
+  }
+
+  std::vector<GuideMemo> short_memo(memo.size() - 1);
+  start.guides = &short_memo;
+  EXPECT_THROW(constrict(dt, start, options), InvalidInput);
+}
+
 TEST(Constriction3, MinimalAreaChangeBaselineGivesValidBoundaries) {
   ReconstructionOptions options;
   options.constriction.criterion = ConstrictionCriterion::minimal_area_change;
