@@ -522,8 +522,9 @@ struct IncrementalConstriction::State {
   // triangulation, and the fill's rounds and the local constrictions (with
   // a ring released where a part locks) cost more than constricting the
   // whole once (docs/design.md, "Too wide to be local"). `parts` ends as
-  // the connected parts of the fill.
-  bool fill_to_ball(std::vector<Cell>& region, FillParts& parts) {
+  // the connected parts of the fill. Every finite cell across a face of
+  // region[0, enclosed) is in the region: no pocket is looked for there.
+  bool fill_to_ball(std::vector<Cell>& region, FillParts& parts, std::size_t enclosed) {
     // f(v) now (−1: unchanged since the last batch) and whether v is pinched,
     // refreshed only at the points of cells filled since the last round.
     std::vector<Vertex> known, linked;
@@ -549,7 +550,7 @@ struct IncrementalConstriction::State {
       }
     };
     bool ball = false;
-    std::size_t pockets_checked = 0;
+    std::size_t pockets_checked = enclosed;
     std::vector<Vertex> pinched;
     for (int round = 0; round < kFillRounds && !ball; ++round) {
       if (!local(region)) break;  // the whole is constricted again
@@ -1177,7 +1178,10 @@ struct IncrementalConstriction::State {
   // these points. A part of a few points among many (a batch spread over
   // the surface, as in random order) refines the boundary where it already
   // was, and rings around every one of them would cover the whole surface.
-  std::vector<Cell> with_margin(std::vector<Cell> front, const std::vector<Cell>& rest) {
+  // `enclosed` ends as the number of cells at the start of the result whose
+  // finite neighbours are all in it (the rings and the skin's inner layers).
+  std::vector<Cell> with_margin(std::vector<Cell> front, const std::vector<Cell>& rest, std::size_t& enclosed) {
+    enclosed = 0;
     if (margin == 0) {
       front.insert(front.end(), rest.begin(), rest.end());
       return front;
@@ -1232,7 +1236,8 @@ struct IncrementalConstriction::State {
     for (const Vertex v : known) fill_vertex[static_cast<std::size_t>(v->info())] = -1;
     // The skin: layers of cells across a face from the rings, kept and
     // removed (these filled) alike.
-    for (std::size_t layer = 0, from = 0; layer < kSkinLayers && local(front); ++layer) {
+    std::size_t from = 0;
+    for (std::size_t layer = 0; layer < kSkinLayers && local(front); ++layer) {
       const std::size_t to = front.size();
       for (std::size_t i = from; i < to; ++i)
         for (int k = 0; k < 4; ++k) {
@@ -1244,6 +1249,7 @@ struct IncrementalConstriction::State {
         }
       from = to;
     }
+    enclosed = from;  // each layer took in every finite cell across the faces of those before
     for (const Cell c : front) c->info().local = -1;
     for (const Cell c : rest) c->info().local = -1;
     front.insert(front.end(), rest.begin(), rest.end());
@@ -1255,9 +1261,10 @@ struct IncrementalConstriction::State {
     carry_stars_over();
     std::vector<Cell> front, rest;
     new_cells(fresh, front, rest);
-    std::vector<Cell> region = with_margin(std::move(front), rest);
+    std::size_t enclosed = 0;
+    std::vector<Cell> region = with_margin(std::move(front), rest, enclosed);
     FillParts parts;
-    const bool ball = fill_to_ball(region, parts);
+    const bool ball = fill_to_ball(region, parts, enclosed);
     const auto forget_inner = [&] {
       for (const int id : inner_points) inner[static_cast<std::size_t>(id)] = -1;
       inner_points.clear();
