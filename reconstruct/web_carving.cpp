@@ -4,6 +4,8 @@
 #include "reconstruct/surface_link.h"
 #include "reconstruct/triangle_set.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -44,10 +46,10 @@ class WebCarver {
     point_mark_.assign(points, 0);
     share_before_.assign(points, 0);
     std::vector<int> carved;
-    for (const std::vector<int>& web : webs) {
+    const auto attempt = [&](const std::vector<int>& web) {
       std::vector<int> members = web;  // less what an earlier sheet's repairs took
       std::erase_if(members, [&](int c) { return !kept_[static_cast<std::size_t>(c)]; });
-      if (members.empty()) continue;
+      if (members.empty()) return true;
       for (int round = 0; round <= options_.pillar_rounds; ++round) {
         if (try_remove(members)) {
           // A cell given back by one repair may be cut by a later one.
@@ -55,10 +57,22 @@ class WebCarver {
           gone_.erase(std::unique(gone_.begin(), gone_.end()), gone_.end());
           for (const int c : gone_)
             if (!kept_[static_cast<std::size_t>(c)]) carved.push_back(c);
-          break;
+          return true;
         }
         if (!add_pillars(members)) break;
       }
+      return false;
+    };
+    // A sheet that could not go is tried again once others went: their
+    // removal changes the boundary it meets (bunny00: a sheet between an
+    // ear and the back goes only after a neighbouring one). Passes repeat
+    // until one takes none, so whether a sheet goes does not hang on where
+    // it came in the order of finding, which follows the cells' numbering.
+    std::vector<const std::vector<int>*> left;
+    for (const std::vector<int>& web : webs) left.push_back(&web);
+    for (std::size_t before = left.size() + 1; !left.empty() && left.size() < before;) {
+      before = left.size();
+      std::erase_if(left, [&](const std::vector<int>* web) { return attempt(*web); });
     }
     if (!carved.empty() && !connected()) {  // never seen; the checks above are local
       for (const int c : carved) kept_[static_cast<std::size_t>(c)] = 1;
@@ -257,11 +271,35 @@ class WebCarver {
     return parts;
   }
 
-  static std::size_t largest(const std::vector<std::vector<int>>& parts) {
+  // The part of the most cells; of parts with as many, the one of the
+  // largest volume, so that the choice is the geometry's, not the cells'
+  // numbering (which of two one-cell parts stays decided whether
+  // diplodocus's largest sheet could go).
+  std::size_t largest(const std::vector<std::vector<int>>& parts) const {
     std::size_t best = 0;
-    for (std::size_t k = 1; k < parts.size(); ++k)
-      if (parts[k].size() > parts[best].size()) best = k;
+    double best_volume = -1.0;  // of parts[best], once a tie needs it
+    for (std::size_t k = 1; k < parts.size(); ++k) {
+      if (parts[k].size() < parts[best].size()) continue;
+      if (parts[k].size() == parts[best].size()) {
+        if (best_volume < 0) best_volume = volume(parts[best]);
+        const double v = volume(parts[k]);
+        if (!(v > best_volume)) continue;
+        best_volume = v;
+      } else {
+        best_volume = -1.0;
+      }
+      best = k;
+    }
     return best;
+  }
+
+  double volume(const std::vector<int>& cells) const {
+    double sum = 0.0;
+    for (const int c : cells) {
+      const Eigen::Vector3d a = point(dt_.cells(c, 0));
+      sum += std::abs((point(dt_.cells(c, 1)) - a).dot((point(dt_.cells(c, 2)) - a).cross(point(dt_.cells(c, 3)) - a)));
+    }
+    return sum;
   }
 
   // The kept cells around v (or the edge vw) in several parts: all but the

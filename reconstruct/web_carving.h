@@ -60,7 +60,11 @@ struct WebOptions {
 ///           a sheet holding one stays
 /// around    optional: the cells around each point of dt, shared with the
 ///           steps after this one (built here when empty)
-/// Returns the cells removed. Each sheet goes, with the repairs above, only
+/// Returns the cells removed. Sheets that could not go are tried again
+/// after the others went, until a pass removes none; a repair that keeps
+/// the largest of several parts takes, of parts with as many cells, the one
+/// of the larger volume, so the result does not hang on the cells'
+/// numbering. Each sheet goes, with the repairs above, only
 /// if afterwards every point of its cells still lies in a kept cell, the
 /// boundary is a 2-manifold at each of them, the Euler characteristic
 /// Σ_v (1 − f(v)/6) over the boundary points is unchanged (f(v): the
