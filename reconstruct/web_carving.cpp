@@ -293,6 +293,7 @@ class WebCarver {
     return best;
   }
 
+  // Six times the cells' volume (only compared).
   double volume(const std::vector<int>& cells) const {
     double sum = 0.0;
     for (const int c : cells) {
