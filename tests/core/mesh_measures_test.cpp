@@ -24,7 +24,7 @@ TEST(MeshMeasures, VolumeAndAreaDoNotDependOnWhereTheMeshIs) {
   const TriangleMesh sphere = sim::icosphere(4);
   const double volume = enclosed_volume(sphere.vertices.positions, sphere.faces);
   const double area = surface_area(sphere.vertices.positions, sphere.faces);
-  for (const Eigen::RowVector3d offset : {Eigen::RowVector3d(1e6, -2e6, 3e5), Eigen::RowVector3d(-4e7, 0, 0)}) {
+  for (const Eigen::RowVector3d& offset : {Eigen::RowVector3d(1e6, -2e6, 3e5), Eigen::RowVector3d(-4e7, 0, 0)}) {
     const Eigen::MatrixX3d moved = sphere.vertices.positions.rowwise() + offset;
     EXPECT_NEAR(enclosed_volume(moved, sphere.faces), volume, 1e-7 * volume) << offset;
     EXPECT_NEAR(surface_area(moved, sphere.faces), area, 1e-7 * area) << offset;
