@@ -27,9 +27,12 @@ const char* ioctl_name(unsigned long request) {
   }
 }
 
+// The ioctl's argument, read from the caller's memory; nullptr when it cannot
+// be (the call is then completed with EFAULT, as the kernel's would be).
 template <typename T>
 T* resolve(UMockdevIoctlClient* client) {
   UMockdevIoctlData* data = umockdev_ioctl_data_resolve(umockdev_ioctl_client_get_arg(client), 0, sizeof(T), nullptr);
+  if (!data) umockdev_ioctl_client_complete(client, -1, EFAULT);
   return data ? reinterpret_cast<T*>(data->data) : nullptr;
 }
 
@@ -132,6 +135,7 @@ void EmulatedGpioChip::chip_ioctl(UMockdevIoctlClient* client) {
   switch (request) {
     case GPIO_GET_CHIPINFO_IOCTL: {
       auto* info = resolve<gpiochip_info>(client);
+      if (!info) return;
       copy_text(info->name, name_);
       copy_text(info->label, lines_.label());
       info->lines = static_cast<__u32>(lines_.line_names().size());
@@ -139,6 +143,7 @@ void EmulatedGpioChip::chip_ioctl(UMockdevIoctlClient* client) {
     }
     case GPIO_GET_LINEINFO_IOCTL: {
       auto* info = resolve<gpioline_info>(client);
+      if (!info) return;
       const unsigned offset = info->line_offset;
       if (offset >= lines_.line_names().size()) return umockdev_ioctl_client_complete(client, -1, EINVAL);
       copy_text(info->name, lines_.line_names()[offset]);
@@ -158,6 +163,7 @@ void EmulatedGpioChip::chip_ioctl(UMockdevIoctlClient* client) {
 
 void EmulatedGpioChip::request_lines(UMockdevIoctlClient* client) {
   auto* req = resolve<gpiohandle_request>(client);
+  if (!req) return;
   std::lock_guard lock(mutex_);
   if (req->lines == 0 || req->lines > GPIOHANDLES_MAX) return umockdev_ioctl_client_complete(client, -1, EINVAL);
   if (static_cast<int>(requests_.size()) == max_requests_) return umockdev_ioctl_client_complete(client, -1, ENOMEM);
@@ -200,18 +206,18 @@ void EmulatedGpioChip::handle_ioctl(UMockdevIoctlClient* client) {
   if (slot >= static_cast<int>(requests_.size()) || !requests_[std::size_t(slot)].open)
     return umockdev_ioctl_client_complete(client, -1, EBADF);
   Request& granted = requests_[std::size_t(slot)];
+  const bool set = request == GPIOHANDLE_SET_LINE_VALUES_IOCTL;
+  if (!set && request != GPIOHANDLE_GET_LINE_VALUES_IOCTL) return umockdev_ioctl_client_complete(client, -1, ENOTTY);
   auto* data = resolve<gpiohandle_data>(client);
-  switch (request) {
-    case GPIOHANDLE_SET_LINE_VALUES_IOCTL:
-      if (granted.outputs.empty()) return umockdev_ioctl_client_complete(client, -1, EPERM);
-      for (std::size_t i = 0; i < granted.outputs.size(); ++i) granted.outputs[i]->set(data->values[i] != 0);
-      return umockdev_ioctl_client_complete(client, 0, 0);
-    case GPIOHANDLE_GET_LINE_VALUES_IOCTL:
-      for (std::size_t i = 0; i < granted.outputs.size(); ++i) data->values[i] = granted.outputs[i]->value();
-      for (std::size_t i = 0; i < granted.inputs.size(); ++i) data->values[i] = granted.inputs[i]->value();
-      return umockdev_ioctl_client_complete(client, 0, 0);
-    default: umockdev_ioctl_client_complete(client, -1, ENOTTY);
+  if (!data) return;
+  if (set) {
+    if (granted.outputs.empty()) return umockdev_ioctl_client_complete(client, -1, EPERM);
+    for (std::size_t i = 0; i < granted.outputs.size(); ++i) granted.outputs[i]->set(data->values[i] != 0);
+  } else {
+    for (std::size_t i = 0; i < granted.outputs.size(); ++i) data->values[i] = granted.outputs[i]->value();
+    for (std::size_t i = 0; i < granted.inputs.size(); ++i) data->values[i] = granted.inputs[i]->value();
   }
+  umockdev_ioctl_client_complete(client, 0, 0);
 }
 
 }  // namespace scanstation::test
