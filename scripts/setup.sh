@@ -14,8 +14,9 @@ packages=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   umockdev libumockdev-dev  # emulated sysfs/udev/usbfs for the libusb and libgpiod tests
-  # public data used by the tests: CGAL's meshes and scans, OpenCV's stereo images
-  libcgal-demo opencv-doc
+  # public data used by the tests: CGAL's meshes and scans, OpenCV's stereo
+  # images, and assimp's model files (held out: read and reconstructed only)
+  libcgal-demo opencv-doc assimp-testmodels
 )
 
 missing=()
