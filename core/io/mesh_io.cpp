@@ -8,11 +8,33 @@
 #include "core/io/svg.h"
 #include "core/io/xyz.h"
 
+#include <cstdint>
+#include <cstring>
+#include <string_view>
+
 namespace scanstation::io {
 
 namespace fs = std::filesystem;
 
 namespace {
+// A text file saved as UTF-16 (Windows PowerShell's `>` writes it so) would
+// otherwise surface as binary data or as a number that does not parse. A
+// binary STL's 80-byte header is free, so it may begin with the same two
+// bytes: an STL whose size matches its triangle count is left to the reader.
+void reject_utf16(std::string_view bytes, const fs::path& path, FileFormat format) {
+  const bool little = bytes.starts_with("\xFF\xFE"), big = bytes.starts_with("\xFE\xFF");
+  if (!little && !big) return;
+  if (format == FileFormat::stl && bytes.size() >= 84) {
+    std::uint32_t count = 0;
+    std::memcpy(&count, bytes.data() + 80, sizeof count);  // little endian, as STL stores it
+    if (bytes.size() == 84 + 50 * std::uint64_t{count}) return;
+  }
+  throw FormatError(FileLocation::at_line(path, 1),
+                    std::string("UTF-16 text (a ") + (little ? "little" : "big") +
+                        "-endian byte-order mark): expected ASCII or UTF-8 text; convert it first, e.g. with "
+                        "'iconv -f UTF-16 -t UTF-8'");
+}
+
 void require_text(FileFormat format, std::optional<Encoding> encoding) {
   if (encoding && *encoding != Encoding::ascii)
     throw InvalidInput(format_name(format) + " is a text format: it has no binary encoding");
@@ -29,6 +51,7 @@ TriangleMesh points_only(PointCloud cloud) {
 TriangleMesh read_mesh(const fs::path& path, const ReadOptions& options) {
   const FileFormat format = resolve_format(path, options.format);
   const std::string bytes = read_file(path);
+  reject_utf16(bytes, path, format);
   switch (format) {
     case FileFormat::xyz: return points_only(read_xyz(bytes, path, options.progress));
     case FileFormat::ply: return read_ply(bytes, path, options.progress);
@@ -79,6 +102,7 @@ Polygon2 read_polygon(const fs::path& path, const ReadOptions& options) {
   if (format != FileFormat::xyz)
     throw InvalidInput(path.string() + ": a polygon is read from svg or from a text list of 'x y' lines, not " +
                        format_name(format));
+  reject_utf16(bytes, path, format);
   const PointCloud cloud = read_xyz(bytes, path, options.progress);
   if (cloud.dimension != 2)
     throw FormatError(FileLocation::at_line(path, 1), "expected two numbers per line ('x y') for a polygon");

@@ -101,6 +101,49 @@ TEST(MeshIo, MislabeledFilesAreReportedNotMisread) {
   expect_error<FormatError>([&] { read_mesh(dir / "fake.stl"); }, {"fake.stl"});
 }
 
+// Text saved as UTF-16 (as Windows PowerShell's redirection writes it) is
+// named as such in every text format, while a binary STL whose free header
+// happens to begin with the same two bytes still reads.
+TEST(MeshIo, Utf16TextIsNamedNotMisread) {
+  ScratchFolder dir;
+  const auto utf16 = [](const std::string& ascii, bool little) {
+    std::string out = little ? "\xFF\xFE" : "\xFE\xFF";
+    for (const char c : ascii) {
+      if (little) out += c;
+      out += '\0';
+      if (!little) out += c;
+    }
+    return out;
+  };
+  const std::vector<std::pair<std::string, std::string>> texts{
+      {"p.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"},
+      {"p.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n"},
+      {"p.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"p.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                "end_header\n0 0 0\n"},
+      {"p.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+                "endfacet\nendsolid s\n"}};
+  for (const auto& [name, text] : texts) {
+    for (const bool little : {true, false}) {
+      const std::string file = (little ? "le-" : "be-") + name;
+      write_file_atomically(dir / file, utf16(text, little), Overwrite::refuse);
+      expect_error<FormatError>([&] { read_mesh(dir / file); }, {file + ":1", "UTF-16", little ? "little" : "big"});
+    }
+  }
+  write_file_atomically(dir / "le-q.xy", utf16("0 0\n1 0\n0 1\n", true), Overwrite::refuse);
+  ReadOptions as_text;
+  as_text.format = "xyz";
+  expect_error<FormatError>([&] { read_polygon(dir / "le-q.xy", as_text); }, {"le-q.xy:1", "UTF-16"});
+
+  const TriangleMesh mesh = sim::icosphere(1);
+  write_mesh(dir / "real.stl", mesh);
+  std::string binary = read_file(dir / "real.stl");
+  binary[0] = '\xFF';
+  binary[1] = '\xFE';
+  write_file_atomically(dir / "header.stl", binary, Overwrite::refuse);
+  EXPECT_EQ(read_mesh(dir / "header.stl").face_count(), mesh.face_count());
+}
+
 TEST(MeshIo, PolygonsAsTextAndSvg) {
   ScratchFolder dir;
   Polygon2 p;
