@@ -9,6 +9,7 @@
 #include "core/io/byte_cursor.h"
 #include "core/io/number_text.h"
 #include "core/io/text_lines.h"
+#include "core/log.h"
 
 #include <algorithm>
 #include <array>
@@ -211,6 +212,15 @@ Header read_header(std::string_view bytes, const fs::path& file) {
       if (header.elements.empty()) lines.fail("expected an 'element' line before the first 'property'");
       Element& element = header.elements.back();
       element.properties.push_back(parse_property(tokens, lines.line_number(), element));
+    } else if (header.elements.empty()) {
+      // Blender's 2.4x exporter wrote its comment without the keyword
+      // ("Created by Blender3D 247 - www.blender.org, ..."); CGAL's and
+      // assimp's readers skip such a line. Before the first element it
+      // cannot be a misspelt property, and a misspelt element or format
+      // line fails below; after it, a misspelt property would shift the
+      // columns of every row, so there it is an error.
+      room_logger("core")->warn("{}:{}: skipped a header line that starts with no PLY keyword, as a comment: {}",
+                                file.string(), lines.line_number(), io::quoted(lines.line()));
     } else {
       lines.fail("expected a header keyword (format, element, property, comment, obj_info or end_header), found " +
                  io::quoted(keyword));

@@ -354,6 +354,17 @@ TEST(PlyRead, AsciiWithExtrasCrlfWrappedTokensAndFacesFirst) {
   EXPECT_EQ(mesh.faces, expected);
 }
 
+// Blender's 2.4x exporter wrote its comment without the keyword; such a
+// line before the first element is read as the comment it is.
+TEST(PlyRead, KeywordlessCommentBeforeTheElementsIsSkipped) {
+  const TriangleMesh mesh =
+      read_ply(replaced(kAscii, "comment three points", "Created by Blender3D 247 - www.blender.org, source file: "),
+               kFile);
+  EXPECT_EQ(mesh.vertices.size(), 3);
+  EXPECT_EQ(mesh.face_count(), 1);
+  EXPECT_EQ(mesh.vertices.positions.row(1), Eigen::RowVector3d(1, 0, 0));
+}
+
 TEST(PlyRead, FloatColoursScaleFromUnitRange) {
   const std::string text =
       "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
@@ -423,8 +434,15 @@ TEST(PlyMalformed, HeaderLines) {
               AllOf(HasSubstr("file.ply:4"), HasSubstr("duplicate element 'vertex'")));
   EXPECT_THAT(error_of(replaced(kAscii, "property float z", "property float y")),
               AllOf(HasSubstr("file.ply:7"), HasSubstr("duplicate property 'y'")));
-  EXPECT_THAT(error_of(replaced(kAscii, "comment", "kommentar")),
-              AllOf(HasSubstr("file.ply:3"), HasSubstr("header keyword")));
+  // After the first element an unknown line may be a misspelt property,
+  // which would shift every row's columns: refused.
+  EXPECT_THAT(error_of(replaced(kAscii, "property float y", "propery float y")),
+              AllOf(HasSubstr("file.ply:6"), HasSubstr("header keyword"), HasSubstr("'propery'")));
+  EXPECT_THAT(error_of(replaced(kAscii, "element face 1", "elemnt face 1")),
+              AllOf(HasSubstr("file.ply:8"), HasSubstr("header keyword")));
+  // Before it, a misspelt element or format line still fails.
+  EXPECT_THAT(error_of(replaced(kAscii, "element vertex 3", "elemnt vertex 3")),
+              AllOf(HasSubstr("file.ply:5"), HasSubstr("'element' line before")));
   EXPECT_THAT(error_of(replaced(kAscii, "format ascii 1.0\n", "")),
               AllOf(HasSubstr("file.ply:9"), HasSubstr("'format' line")));
   EXPECT_THAT(error_of(replaced(kAscii, "format ascii 1.0", "format binary 1.0")),
