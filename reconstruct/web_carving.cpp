@@ -277,19 +277,10 @@ class WebCarver {
   // diplodocus's largest sheet could go).
   std::size_t largest(const std::vector<std::vector<int>>& parts) const {
     std::size_t best = 0;
-    double best_volume = -1.0;  // of parts[best], once a tie needs it
-    for (std::size_t k = 1; k < parts.size(); ++k) {
-      if (parts[k].size() < parts[best].size()) continue;
-      if (parts[k].size() == parts[best].size()) {
-        if (best_volume < 0) best_volume = volume(parts[best]);
-        const double v = volume(parts[k]);
-        if (!(v > best_volume)) continue;
-        best_volume = v;
-      } else {
-        best_volume = -1.0;
-      }
-      best = k;
-    }
+    for (std::size_t k = 1; k < parts.size(); ++k)
+      if (parts[k].size() > parts[best].size() ||
+          (parts[k].size() == parts[best].size() && volume(parts[k]) > volume(parts[best])))
+        best = k;
     return best;
   }
 

@@ -13,6 +13,7 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <string>
 #include <variant>
