@@ -2,6 +2,7 @@
 
 #include "acquisition/station_calibration.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/io/file_access.h"
 #include "core/io/json_document.h"
 #include "core/io/station_geometry_json.h"
@@ -13,7 +14,6 @@
 #include <cstring>
 #include <fcntl.h>
 #include <opencv2/core/utility.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 #include <sys/stat.h>
@@ -482,7 +482,7 @@ void SessionRecorder::record(const CapturedStep& step) {
   cv::parallel_for_(cv::Range(0, static_cast<int>(step.frames.size())), [&](const cv::Range& range) {
     for (int k = range.start; k < range.end; ++k) {
       const auto i = static_cast<std::size_t>(k);
-      encoded[i] = cv::imencode(".png", step.frames[i].frame.image, png[i], png_options);
+      encoded[i] = image::encode(".png", step.frames[i].frame.image, png[i], png_options);
     }
   });
   for (std::size_t k = 0; k < step.frames.size(); ++k) {

@@ -3,12 +3,12 @@
 #include "acquisition/outlier_removal.h"
 #include "acquisition/stereo_step_points.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/io/file_access.h"
 #include "core/io/mesh_io.h"
 #include "core/version.h"
 
 #include <chrono>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace scanstation::acquisition {
@@ -118,7 +118,7 @@ std::optional<StereoStepFrames> load_stereo_step(const SessionContents& session,
 cv::Mat read_session_frame(const fs::path& file) {
   cv::Mat frame;
   try {
-    frame = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+    frame = image::read(file.string(), cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {  // a header beyond OpenCV's limits: unreadable, as any other
     return {};
   }

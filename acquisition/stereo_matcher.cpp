@@ -1,10 +1,11 @@
 #include "acquisition/stereo_matcher.h"
 
+#include "acquisition/ximgproc_module.h"
 #include "core/errors.h"
+#include "core/loadable_module.h"
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc/disparity_filter.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,12 @@ namespace {
 
 constexpr float invalid = -1.0f;
 constexpr int kMaxDisparity = 2048;
+
+const XimgprocTable& ximgproc() {
+  static const XimgprocTable* table =
+      reinterpret_cast<const XimgprocTable* (*)()>(module_symbol("ximgproc", ximgproc_table_entry))();
+  return *table;
+}
 
 cv::Ptr<cv::StereoSGBM> make_matcher(const StereoOptions& o, int channels) {
   if (o.num_disparities <= 0 || o.num_disparities % 16 != 0)
@@ -113,10 +120,10 @@ cv::Mat compute_disparity(const cv::Mat& left, const cv::Mat& right, const Stere
   }
   if (options.post_filter == DisparityPostFilter::wls) {
     // The filter runs its own left–right confidence from the right matcher.
-    const cv::Ptr<cv::StereoMatcher> right_matcher = cv::ximgproc::createRightMatcher(matcher);
+    const cv::Ptr<cv::StereoMatcher> right_matcher = ximgproc().right_matcher(matcher);
     cv::Mat right_fixed, filtered;
     right_matcher->compute(right, left, right_fixed);
-    const cv::Ptr<cv::ximgproc::DisparityWLSFilter> wls = cv::ximgproc::createDisparityWLSFilter(matcher);
+    const cv::Ptr<cv::ximgproc::DisparityWLSFilter> wls = ximgproc().wls_filter(matcher);
     wls->setLambda(options.wls_lambda);
     wls->setSigmaColor(options.wls_sigma);
     wls->setLRCthresh(static_cast<int>(std::lround(options.left_right_tolerance * 16)));
@@ -129,7 +136,7 @@ cv::Mat compute_disparity(const cv::Mat& left, const cv::Mat& right, const Stere
   }
   cv::Mat disparity = to_pixels(left_fixed, options.min_disparity);
   if (options.left_right_check) {
-    const cv::Ptr<cv::StereoMatcher> right_matcher = cv::ximgproc::createRightMatcher(matcher);
+    const cv::Ptr<cv::StereoMatcher> right_matcher = ximgproc().right_matcher(matcher);
     cv::Mat right_fixed;
     right_matcher->compute(right, left, right_fixed);
     // The right matcher reports negated disparities.

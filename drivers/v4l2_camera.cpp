@@ -1,6 +1,7 @@
 #include "drivers/v4l2_camera.h"
 
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/log.h"
 #include "drivers/device_error.h"
 
@@ -10,7 +11,6 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <linux/videodev2.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <poll.h>
 #include <sys/mman.h>
@@ -358,7 +358,7 @@ bool V4l2Camera::convert(const Buffer& buffer, std::uint32_t bytes_used, cv::Mat
   const int width = format_.size.width, height = format_.size.height;
   const std::size_t used = bytes_used == 0 ? buffer.length : bytes_used;
   if (format_.format == PixelFormat::mjpeg) {
-    image = cv::imdecode(cv::Mat(1, static_cast<int>(used), CV_8UC1, buffer.data), cv::IMREAD_COLOR);
+    image = image::decode(cv::Mat(1, static_cast<int>(used), CV_8UC1, buffer.data), cv::IMREAD_COLOR);
     return !image.empty() && image.cols == width && image.rows == height;
   }
   const int type = format_.format == PixelFormat::grey ? CV_8UC1 : format_.format == PixelFormat::y16 ? CV_16UC1

@@ -1,11 +1,11 @@
 #include "smoothing/reflection_lines.h"
 
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "smoothing/orthographic_raster.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 namespace scanstation {
@@ -41,7 +41,7 @@ std::string reflection_lines_png(const TriangleMesh& smooth, const TriangleMesh&
   rasterize(smooth, true, view, painter(0));
   rasterize(flat, false, view, painter(options.width_px));
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", image, png)) throw IoError("could not encode the reflection-line image as PNG");
+  if (!image::encode(".png", image, png)) throw IoError("could not encode the reflection-line image as PNG");
   return std::string(png.begin(), png.end());
 }
 

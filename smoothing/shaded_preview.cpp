@@ -1,11 +1,11 @@
 #include "smoothing/shaded_preview.h"
 
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "smoothing/orthographic_raster.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 namespace scanstation {
@@ -55,7 +55,7 @@ std::string shaded_preview_png(const TriangleMesh& boundary, const TriangleMesh&
     ++row;
   }
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", image, png)) throw IoError("could not encode the preview as PNG");
+  if (!image::encode(".png", image, png)) throw IoError("could not encode the preview as PNG");
   return std::string(png.begin(), png.end());
 }
 

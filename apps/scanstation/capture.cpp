@@ -2,6 +2,7 @@
 // (each frame exposed only after the laser settled).
 #include "command.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/io/file_access.h"
 #include "core/log.h"
 #include "drivers/frame_gate.h"
@@ -9,7 +10,6 @@
 #include "station_options.h"
 
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 
 namespace scanstation::app {
 
@@ -48,7 +48,7 @@ class CaptureCommand final : public Command {
       char name[32];
       std::snprintf(name, sizeof name, "frame_%04d.png", i);
       std::vector<unsigned char> png;
-      cv::imencode(".png", got.frame.image, png);
+      image::encode(".png", got.frame.image, png);
       io::write_file_atomically(folder_ / name, {reinterpret_cast<const char*>(png.data()), png.size()},
                                 context.overwrite);
       frames.push_back({{"file", name}, {"sequence", got.frame.sequence},

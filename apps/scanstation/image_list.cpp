@@ -1,9 +1,8 @@
 #include "image_list.h"
 
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/io/file_access.h"
-
-#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 #include <set>
@@ -62,7 +61,7 @@ cv::Mat read_image(const std::filesystem::path& path, int flags) {
   if (!std::filesystem::exists(path)) throw InvalidInput(path.string() + ": no such file");
   cv::Mat image;
   try {
-    image = cv::imread(path.string(), flags);
+    image = image::read(path.string(), flags);
   } catch (const cv::Exception& e) {  // a header beyond OpenCV's limits: its assertion text
     throw InvalidInput(path.string() + ": not an image OpenCV can read (" + e.err + ")");
   }

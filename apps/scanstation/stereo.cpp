@@ -11,13 +11,13 @@
 #include "command.h"
 #include "core/bounding_box.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/io/mesh_io.h"
 #include "image_list.h"
 #include "sim/sampling.h"
 #include "sim/scan_objects.h"
 #include "sim/stereo_rig.h"
 
-#include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -160,7 +160,7 @@ class StereoCommand final : public Command {
     if (encoding_ == "fixed16") disparity.convertTo(encoded, CV_16U, 16.0);  // negatives (none) saturate to 0
     else disparity.convertTo(encoded, CV_8U);
     std::vector<std::uint8_t> png;
-    cv::imencode(".png", encoded, png);
+    image::encode(".png", encoded, png);
     io::write_file_atomically(output_, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()),
                               context.overwrite);
     write_timer.stop();

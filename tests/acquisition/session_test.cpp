@@ -5,6 +5,7 @@
 #include "acquisition/session_recording.h"
 #include "acquisition/session_replay.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "core/io/mesh_io.h"
 #include "sim/simulated_turntable.h"
 #include "sim/surface_of_revolution.h"
@@ -12,7 +13,6 @@
 #include "test_support.h"
 
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <numbers>
 
@@ -246,9 +246,9 @@ TEST_F(RecordedSphere, RewrittenFramesAreUsedOrNamedAndSkipped) {
   test::ScratchFolder scratch;
   const fs::path edited = copy(scratch);
   const auto rewrite = [&](const std::string& name, const auto& change) {
-    const cv::Mat frame = cv::imread((edited / name).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat frame = image::read((edited / name).string(), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(frame.type(), CV_8UC1);
-    ASSERT_TRUE(cv::imwrite((edited / name).string(), change(frame)));
+    ASSERT_TRUE(image::write((edited / name).string(), change(frame)));
   };
   const auto with_alpha = [](const cv::Mat& grey) {
     cv::Mat bgra;

@@ -1,9 +1,9 @@
 #include "acquisition/stereo_calibration.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "test_support.h"
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -20,8 +20,8 @@ std::pair<std::vector<cv::Mat>, std::vector<cv::Mat>> opencv_chessboards() {
     std::snprintf(name, sizeof name, "%02d.jpg", i);
     const std::filesystem::path l_path = data / ("left" + std::string(name)), r_path = data / ("right" + std::string(name));
     if (!std::filesystem::exists(l_path) || !std::filesystem::exists(r_path)) continue;
-    const cv::Mat l = cv::imread(l_path.string(), cv::IMREAD_GRAYSCALE);
-    const cv::Mat r = cv::imread(r_path.string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat l = image::read(l_path.string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat r = image::read(r_path.string(), cv::IMREAD_GRAYSCALE);
     left.push_back(l);
     right.push_back(r);
   }

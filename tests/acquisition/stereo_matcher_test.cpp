@@ -1,8 +1,8 @@
 #include "acquisition/stereo_matcher.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "test_support.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <filesystem>
@@ -13,9 +13,9 @@ namespace {
 const std::filesystem::path opencv_data = "/usr/share/doc/opencv-doc/examples/data";
 
 struct Aloe {
-  cv::Mat left = cv::imread((opencv_data / "aloeL.jpg").string(), cv::IMREAD_COLOR);
-  cv::Mat right = cv::imread((opencv_data / "aloeR.jpg").string(), cv::IMREAD_COLOR);
-  cv::Mat truth = cv::imread((opencv_data / "aloeGT.png").string(), cv::IMREAD_GRAYSCALE);
+  cv::Mat left = image::read((opencv_data / "aloeL.jpg").string(), cv::IMREAD_COLOR);
+  cv::Mat right = image::read((opencv_data / "aloeR.jpg").string(), cv::IMREAD_COLOR);
+  cv::Mat truth = image::read((opencv_data / "aloeGT.png").string(), cv::IMREAD_GRAYSCALE);
 };
 
 // The real Middlebury pair, same disparity range as the reference: the

@@ -5,11 +5,11 @@
 #include "acquisition/session_recording.h"
 #include "acquisition/session_replay.h"
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "sim/simulated_stereo.h"
 #include "test_support.h"
 
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace scanstation::acquisition {
@@ -74,11 +74,11 @@ TEST(StereoSession, ProjectorLitExactlyForThePairAndPointsAsReplayed) {
   // is named, and the step is coloured from its pair.
   const fs::path left = folder / "s" / stereo_frame_file_name(1, 0, true);
   cv::Mat bgra;
-  cv::cvtColor(cv::imread(left.string(), cv::IMREAD_UNCHANGED), bgra, cv::COLOR_GRAY2BGRA);
-  ASSERT_TRUE(cv::imwrite(left.string(), bgra));
+  cv::cvtColor(image::read(left.string(), cv::IMREAD_UNCHANGED), bgra, cv::COLOR_GRAY2BGRA);
+  ASSERT_TRUE(image::write(left.string(), bgra));
   const fs::path colour = folder / "s" / stereo_frame_file_name(2, 0, false);
-  const cv::Mat full = cv::imread(colour.string(), cv::IMREAD_UNCHANGED);
-  ASSERT_TRUE(cv::imwrite(colour.string(), cv::Mat(full, cv::Rect(0, 0, full.cols - 1, full.rows))));
+  const cv::Mat full = image::read(colour.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_TRUE(image::write(colour.string(), cv::Mat(full, cv::Rect(0, 0, full.cols - 1, full.rows))));
   replayed.clear();
   const ScanResult edited = replay_session(read_session(folder / "s"), options);
   EXPECT_EQ(replayed, live);

@@ -43,6 +43,21 @@ TEST(Cli, VersionHelpAndUsageErrors) {
   EXPECT_EQ(scanstation("--progress=loud info x.ply").exit_code, 1);
 }
 
+// The libraries the binary loads at start leave out OpenCV's image codecs
+// and what they bring (GDAL, GDCM, … about 120 libraries and 80 ms at every
+// start): commands that touch an image load them as a module
+// (core/loadable_module.h), as the stereo and station tests exercise.
+TEST(Cli, StartsWithoutTheImageCodecs) {
+  ScratchFolder io;
+  const std::string command =
+      "LD_TRACE_LOADED_OBJECTS=1 " + std::string(SCANSTATION_BINARY) + " >" + path(io / "libraries") + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string libraries = slurp(io / "libraries");
+  EXPECT_THAT(libraries, testing::HasSubstr("libopencv_core"));
+  for (const char* heavy : {"libopencv_imgcodecs", "libopencv_ximgproc", "libgdal"})
+    EXPECT_THAT(libraries, testing::Not(testing::HasSubstr(heavy)));
+}
+
 TEST(Cli, ConvertAndInfoOnRealCgalData) {
   ScratchFolder dir;
   const std::string elephant = path(test::cgal_data("meshes/elephant.off"));

@@ -1,9 +1,10 @@
 #include "emulated_v4l2_device.h"
 
+#include "core/image_codecs.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <opencv2/imgcodecs.hpp>
 #include <poll.h>
 #include <sys/mman.h>
 
@@ -83,7 +84,7 @@ void EmulatedV4l2Device::fill(Slot& slot, std::uint32_t index, std::uint32_t seq
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) grey.at<std::uint8_t>(y, x) = pattern(sequence, x / 16 * 16);
     std::vector<std::uint8_t> jpeg;
-    cv::imencode(".jpg", grey, jpeg, {cv::IMWRITE_JPEG_QUALITY, 98});
+    image::encode(".jpg", grey, jpeg, {cv::IMWRITE_JPEG_QUALITY, 98});
     std::copy(jpeg.begin(), jpeg.end(), slot.memory.begin());
     used = static_cast<std::uint32_t>(jpeg.size());
   } else {

@@ -1,19 +1,19 @@
 // The station's preview picture: every panel shows the object, and a wrongly
 // oriented boundary shows its inside in red.
 #include "core/errors.h"
+#include "core/image_codecs.h"
 #include "sim/shapes.h"
 #include "smoothing/shaded_preview.h"
 #include "smoothing/surface_smoothing.h"
 #include "smoothing/tessellation.h"
 
 #include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
 
 namespace scanstation {
 namespace {
 
 cv::Mat decode(const std::string& png) {
-  return cv::imdecode(cv::Mat(1, static_cast<int>(png.size()), CV_8UC1, const_cast<char*>(png.data())),
+  return image::decode(cv::Mat(1, static_cast<int>(png.size()), CV_8UC1, const_cast<char*>(png.data())),
                       cv::IMREAD_COLOR);
 }
 
