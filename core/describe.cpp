@@ -38,7 +38,7 @@ nlohmann::json topology_json(const MeshTopology& t) {
 }
 }  // namespace
 
-nlohmann::json describe(const TriangleMesh& mesh) {
+nlohmann::json describe(const TriangleMesh& mesh, const std::vector<char>& meet_properly) {
   const auto& P = mesh.vertices.positions;
   std::vector<Eigen::Index> first, map;
   const Eigen::Index duplicates = unique_points(P, first, map);
@@ -58,7 +58,7 @@ nlohmann::json describe(const TriangleMesh& mesh) {
   const MeshTopology t = mesh_topology(mesh);
   j["topology"] = topology_json(t);
   if (t.manifold && t.oriented && mesh.vertices.dimension == 3) {
-    const auto pairs = self_intersections(mesh);
+    const auto pairs = self_intersections(mesh, meet_properly);
     j["topology"]["self_intersecting_pairs"] = pairs ? nlohmann::json(*pairs) : nlohmann::json(nullptr);
     j["topology"]["simple"] = pairs ? nlohmann::json(*pairs == 0) : nlohmann::json(nullptr);
   }

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <vector>
+
 namespace scanstation {
 
 /// {"vertices", "faces", "dimension", "normals", "colors", "bounding_box":
@@ -15,7 +17,9 @@ namespace scanstation {
 /// and for an oriented manifold "simple" / "self_intersecting_pairs"}
 /// plus "area", "zero_area_faces" (three distinct vertices on one line,
 /// exactly) and, for a closed oriented mesh, "volume".
-nlohmann::json describe(const TriangleMesh& mesh);
+/// meet_properly: as for self_intersections (core/self_intersections.h),
+/// faces known to meet one another properly, whose pairs are not tested.
+nlohmann::json describe(const TriangleMesh& mesh, const std::vector<char>& meet_properly = {});
 
 /// {"vertices", "perimeter", "area", "orientation": "counter-clockwise" |
 ///  "clockwise" | "degenerate", "simple", "bounding_box"}.

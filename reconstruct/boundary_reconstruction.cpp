@@ -6,6 +6,7 @@
 #include "core/unit_scale.h"
 #include "reconstruct/boundary_surface.h"
 #include "reconstruct/cell_blocks.h"
+#include "reconstruct/triangle_set.h"
 
 #include <Eigen/Geometry>
 #include <tbb/task_arena.h>
@@ -156,6 +157,7 @@ void to_output_numbering(const std::vector<int>& output, SurfaceReconstruction& 
   };
   renumber(out.mesh.faces);
   renumber(out.interior);
+  renumber(out.constricted);
   for (int& v : out.statistics.interior_vertices) v = output[static_cast<std::size_t>(v)];
   std::sort(out.statistics.interior_vertices.begin(), out.statistics.interior_vertices.end());
   Eigen::MatrixX3d positions(out.mesh.vertices.positions.rows(), 3);
@@ -312,6 +314,17 @@ void finish_surface(const DelaunayComplex<3>& dt, Constriction<3>& c, const Reco
   s.enclosed_measure = enclosed_volume(out.mesh.vertices.positions, out.mesh.faces);
   fill_statistics(s, dt, c);
   s.kept_faces_on_boundary = faces_on(options.constriction.keep, out.mesh.faces);
+  out.constricted = std::move(c.boundary);
+}
+
+std::vector<char> delaunay_facets(const SurfaceReconstruction& r) {
+  const Eigen::MatrixX3i& faces = r.mesh.faces;
+  std::vector<char> facet(static_cast<std::size_t>(faces.rows()), 1);
+  if (faces.rows() == r.constricted.rows() && faces == r.constricted) return facet;  // no pass after constriction changed it
+  const TriangleSet constricted(Eigen::MatrixXi(r.constricted));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    facet[static_cast<std::size_t>(f)] = constricted.contains(faces(f, 0), faces(f, 1), faces(f, 2));
+  return facet;
 }
 
 ReconstructionOptions surface_defaults() {

@@ -117,12 +117,23 @@ struct BoundaryStatistics {
 ///            keep it one); empty when augmentation carved or flips changed
 ///            the boundary (their tetrahedra overlap Delaunay cells)
 /// source     #V: the input row each mesh vertex came from
+/// constricted  #C by 3: the boundary as constriction, web carving and the
+///            cell flips left it, before augmentation, edge flips and
+///            unfolding: facets of the Delaunay tetrahedralization (mesh
+///            vertex indices), which meet one another only in shared
+///            vertices and edges
 struct SurfaceReconstruction {
   TriangleMesh mesh;
   std::vector<Eigen::Index> source;
   Eigen::MatrixX4i interior;
+  Eigen::MatrixX3i constricted;
   BoundaryStatistics statistics;
 };
+
+/// Per face of r.mesh, 1 when it is one of r.constricted (a Delaunay facet):
+/// a check for self-intersections need not pair two of them
+/// (core/self_intersections.h).
+std::vector<char> delaunay_facets(const SurfaceReconstruction& r);
 
 /// A simple polygon through the planar points.
 /// points    the distinct input points in input order

@@ -196,7 +196,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
   } else {
     const TriangleMesh mesh = boundary_mesh(boundary, result);
     const BoundaryStatistics& st = boundary.surface.statistics;
-    boundary_report = describe(mesh);
+    boundary_report = describe(mesh, delaunay_facets(boundary.surface));  // the same faces
     boundary_report["built"] = boundary.built;
     boundary_report["all_on_boundary"] = st.all_on_boundary;
     boundary_report["distinct_points"] = mesh.vertex_count() + static_cast<Eigen::Index>(st.interior_vertices.size());

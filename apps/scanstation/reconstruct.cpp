@@ -237,9 +237,10 @@ class ReconstructCommand final : public Command {
                                   context.overwrite);
       }
       write_timer.stop();
-      StageTimer verify_timer(context.report, "verify");  // describe() checks for self-intersections exactly
+      // describe() checks for self-intersections exactly, pairs of Delaunay facets aside
+      StageTimer verify_timer(context.report, "verify");
       result = statistics_json(r.statistics, r.source);
-      result["boundary"] = describe(r.mesh);
+      result["boundary"] = describe(r.mesh, delaunay_facets(r));
       result["volume"] = r.statistics.enclosed_measure;
       result["kept_faces_on_boundary"] = r.statistics.kept_faces_on_boundary;
       summarise(r.statistics, std::to_string(r.mesh.face_count()) + " triangles");

@@ -1,6 +1,7 @@
 // Self-intersections: the two-core split by a plane counts the pairs CGAL's
 // one pass counts.
 #include "core/self_intersections.h"
+#include "core/errors.h"
 #include "sim/shapes.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -8,6 +9,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iterator>
 #include <utility>
 #include <vector>
@@ -56,6 +58,31 @@ TEST(SelfIntersections, SplitAcrossTheCoresCountsWhatOnePassCounts) {
   const TriangleMesh apart = two_spheres(4, Eigen::RowVector3d(3.0, 0, 0));
   EXPECT_EQ(self_intersections(apart), std::optional<std::size_t>(0));
   EXPECT_EQ(self_intersections(sim::icosphere(5)), std::optional<std::size_t>(0));
+}
+
+// Faces known to meet one another properly (here: those of one sphere, or
+// some of them) are not paired with each other, and the count stays CGAL's.
+TEST(SelfIntersections, FacesThatMeetProperlyAreNotPairedAndTheCountStays) {
+  for (const int subdivisions : {2, 4}) {  // one pass, and the split
+    for (const Eigen::RowVector3d& offset : {Eigen::RowVector3d(1.0, 0, 0), Eigen::RowVector3d(0.05, 0, 0),
+                                            Eigen::RowVector3d(0.3, 0.2, 0.1)}) {
+      const TriangleMesh mesh = two_spheres(subdivisions, offset);
+      const std::size_t expected = one_pass(mesh);
+      ASSERT_GT(expected, 10u);
+      const std::size_t half = static_cast<std::size_t>(mesh.face_count() / 2);
+      std::vector<char> first_sphere(static_cast<std::size_t>(mesh.face_count()), 0);
+      std::fill(first_sphere.begin(), first_sphere.begin() + static_cast<std::ptrdiff_t>(half), 1);
+      EXPECT_EQ(self_intersections(mesh, first_sphere), std::optional<std::size_t>(expected)) << offset;
+      std::vector<char> every_third(first_sphere.size(), 0);
+      for (std::size_t f = 0; f < half; f += 3) every_third[f] = 1;
+      EXPECT_EQ(self_intersections(mesh, every_third), std::optional<std::size_t>(expected)) << offset;
+    }
+  }
+  // Every face vouched for: nothing is tested.
+  const TriangleMesh crossing = two_spheres(2, Eigen::RowVector3d(0.5, 0, 0));
+  EXPECT_EQ(self_intersections(crossing, std::vector<char>(static_cast<std::size_t>(crossing.face_count()), 1)),
+            std::optional<std::size_t>(0));
+  EXPECT_THROW(self_intersections(crossing, std::vector<char>(3, 1)), InvalidInput);
 }
 
 }  // namespace

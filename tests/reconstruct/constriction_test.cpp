@@ -377,6 +377,49 @@ TEST(Constriction3, RealCgalMeshes) {
   }
 }
 
+// The faces delaunay_facets vouches for are facets of the Delaunay
+// tetrahedralization of the result's points (an independent one, in input
+// order), every face when no pass after constriction changed the boundary;
+// and the self-intersection count that skips their pairs is the full one.
+TEST(Constriction3, DelaunayFacetsAreDelaunayFacetsAndLeaveTheSimplicityCheckExact) {
+  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
+  for (const std::string name : {"cow", "bull", "cube-meshed", "oblong"})
+    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
+  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, 11));
+  for (const auto& [name, P] : inputs) {
+    const SurfaceReconstruction r = reconstruct_surface(P);
+    const std::vector<char> facet = delaunay_facets(r);
+    ASSERT_EQ(facet.size(), static_cast<std::size_t>(r.mesh.face_count())) << name;
+    const DelaunayComplex<3> dt = delaunay_complex(r.mesh.vertices.positions);
+    std::vector<std::array<int, 3>> facets;
+    for (Eigen::Index c = 0; c < dt.cells.rows(); ++c)
+      for (int i = 0; i < 4; ++i) {
+        std::array<int, 3> t{};
+        for (int k = 0, j = 0; k < 4; ++k)
+          if (k != i) t[static_cast<std::size_t>(j++)] = dt.cells(c, k);
+        std::sort(t.begin(), t.end());
+        facets.push_back(t);
+      }
+    std::sort(facets.begin(), facets.end());
+    std::size_t vouched = 0;
+    for (Eigen::Index f = 0; f < r.mesh.face_count(); ++f) {
+      if (!facet[static_cast<std::size_t>(f)]) continue;
+      ++vouched;
+      std::array<int, 3> t{r.mesh.faces(f, 0), r.mesh.faces(f, 1), r.mesh.faces(f, 2)};
+      std::sort(t.begin(), t.end());
+      EXPECT_TRUE(std::binary_search(facets.begin(), facets.end(), t)) << name << " face " << f;
+    }
+    const bool changed = r.statistics.carved > 0 || r.statistics.flips > 0 || r.statistics.unfolded > 0;
+    if (changed) {
+      EXPECT_LT(vouched, facet.size()) << name;
+    } else {
+      EXPECT_EQ(vouched, facet.size()) << name;
+    }
+    EXPECT_GT(vouched, facet.size() / 2) << name;
+    EXPECT_EQ(self_intersections(r.mesh, facet), self_intersections(r.mesh)) << name;
+  }
+}
+
 // Delaunay flips after the area flips keep every guarantee, and on the
 // uniformly sampled ellipsoid, whose true mesh is locally Delaunay, they
 // recover more of its triangles than the area flips alone (0.75 -> 1.0).
