@@ -19,9 +19,8 @@ constexpr float invalid = -1.0f;
 constexpr int kMaxDisparity = 2048;
 
 const XimgprocTable& ximgproc() {
-  static const XimgprocTable* table =
-      reinterpret_cast<const XimgprocTable* (*)()>(module_symbol("ximgproc", ximgproc_table_entry))();
-  return *table;
+  static const XimgprocTable& table = module_table<XimgprocTable>("ximgproc", ximgproc_table_entry);
+  return table;
 }
 
 cv::Ptr<cv::StereoSGBM> make_matcher(const StereoOptions& o, int channels) {

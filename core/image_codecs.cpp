@@ -7,9 +7,8 @@ namespace scanstation::image {
 namespace {
 
 const CodecTable& codecs() {
-  static const CodecTable* table =
-      reinterpret_cast<const CodecTable* (*)()>(module_symbol("imgcodecs", codec_table_entry))();
-  return *table;
+  static const CodecTable& table = module_table<CodecTable>("imgcodecs", codec_table_entry);
+  return table;
 }
 
 }  // namespace

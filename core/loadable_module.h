@@ -21,4 +21,11 @@ namespace scanstation {
 /// Throws IoError naming the paths tried and the loader's reason.
 void* module_symbol(const std::string& name, const char* symbol);
 
+/// The table of functions that module `name` hands out through its entry
+/// `extern "C" const Table* entry()` (see core/imgcodecs_module.h).
+template <typename Table>
+const Table& module_table(const std::string& name, const char* entry) {
+  return *reinterpret_cast<const Table* (*)()>(module_symbol(name, entry))();
+}
+
 }  // namespace scanstation

@@ -33,7 +33,10 @@ std::optional<std::size_t> self_intersections(const TriangleMesh& mesh, const st
   const auto& P = mesh.vertices.positions;
   const auto box = [&](Eigen::Index f) {
     CGAL::Bbox_3 b;
-    for (int k = 0; k < 3; ++k) b += Kernel::Point_3(P(mesh.faces(f, k), 0), P(mesh.faces(f, k), 1), P(mesh.faces(f, k), 2)).bbox();
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.faces(f, k);
+      b += Kernel::Point_3(P(v, 0), P(v, 1), P(v, 2)).bbox();
+    }
     return b;
   };
   // The faces that take part: all, or those whose boxes meet an unflagged
