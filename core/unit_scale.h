@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +34,26 @@ double unit_scale(const Eigen::MatrixBase<Derived>& P) {
     for (Eigen::Index i = 0; i < P.rows(); ++i)
       if (P(i, j) != 0.0) smallest = std::min(smallest, std::abs(P(i, j)));
   return smallest * scale < std::numeric_limits<double>::min() * 0x1p53 ? 1.0 : scale;
+}
+
+/// v times the power of two that brings its largest |component| into
+/// [1/2, 1): the same direction, exactly (v itself when zero or not finite).
+inline Eigen::Vector3d near_unit(const Eigen::Vector3d& v) {
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0) || !std::isfinite(largest)) return v;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return {std::ldexp(v.x(), -exponent), std::ldexp(v.y(), -exponent), std::ldexp(v.z(), -exponent)};
+}
+
+/// A vector along u × v whose length is near 1 at any scale of u and v: the
+/// factors and the product brought near unit length by powers of two, so
+/// that neither it nor its squared length overflows (coordinates near 1e160)
+/// or underflows (near 1e-160) where u × v itself would. Zero when u and v
+/// are parallel. The scalings are exact: normalized, it is bit for bit the
+/// normalized u × v wherever that one is representable.
+inline Eigen::Vector3d scaled_cross(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return near_unit(near_unit(u).cross(near_unit(v)));
 }
 
 }  // namespace scanstation

@@ -148,11 +148,13 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
     bool operator<(const Candidate& o) const { return gain != o.gain ? gain < o.gain : std::tie(a, b) > std::tie(o.a, o.b); }
   };
   std::priority_queue<Candidate> edges;
+  const auto gain = [&](int a, int b, int c, int d) {
+    return flip_gain(criterion, surface.point(a), surface.point(b), surface.point(c), surface.point(d), min_gain);
+  };
   const auto gain_of = [&](int a, int b) {
     const auto [f1, c] = surface.face_with(a, b);
     const auto [f2, d] = surface.face_with(b, a);
-    if (f1 < 0 || f2 < 0 || c == d) return 0.0;
-    return flip_gain(criterion, surface.point(a), surface.point(b), surface.point(c), surface.point(d), min_gain);
+    return f1 < 0 || f2 < 0 || c == d ? 0.0 : gain(a, b, c, d);
   };
   for (const auto& [a, b] : first)
     if (const double g = gain_of(a, b); g > 0) edges.push({g, a, b});
@@ -165,8 +167,8 @@ std::size_t flip_pass(BoundarySurface& surface, const std::vector<std::pair<int,
     const int a = top.a, b = top.b;
     const auto [f1, c] = surface.face_with(a, b);
     const auto [f2, d] = surface.face_with(b, a);
-    if (f1 < 0 || f2 < 0 || c == d || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2)) continue;
-    if (!(gain_of(a, b) > 0)) continue;
+    if (f1 < 0 || f2 < 0 || c == d || !(gain(a, b, c, d) > 0) || surface.has_edge(c, d) || is_fixed(f1) || is_fixed(f2))
+      continue;
     const Triangle g1{a, d, c}, g2{d, b, c};
     const bool cell = cells && cells->is_cell(a, b, c, d);
     if (cell) {

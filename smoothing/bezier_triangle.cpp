@@ -1,5 +1,7 @@
 #include "smoothing/bezier_triangle.h"
 
+#include "core/unit_scale.h"
+
 #include <Eigen/Geometry>
 
 namespace scanstation {
@@ -47,9 +49,19 @@ Eigen::Vector3d normal_direction(const CubicTriangle& patch, const Barycentric& 
   return directional_derivative(patch, uvw, {-1.0, 1.0, 0.0}).cross(directional_derivative(patch, uvw, {-1.0, 0.0, 1.0}));
 }
 
+namespace {
+// The normal's direction with the derivatives and their product kept near
+// unit length (scaled_cross): coordinates near 1e150 or 1e-150 gave a zero
+// normal. Elsewhere the unit normal is the same to the bit.
+Eigen::Vector3d scaled_normal_direction(const CubicTriangle& patch, const Barycentric& uvw) {
+  return scaled_cross(directional_derivative(patch, uvw, {-1.0, 1.0, 0.0}),
+                      directional_derivative(patch, uvw, {-1.0, 0.0, 1.0}));
+}
+}  // namespace
+
 Eigen::Vector3d unit_normal(const CubicTriangle& patch, const Barycentric& uvw) {
-  Eigen::Vector3d n = normal_direction(patch, uvw);
-  if (n.squaredNorm() == 0.0) n = normal_direction(patch, uvw + 1e-6 * (Barycentric::Constant(1.0 / 3.0) - uvw));
+  Eigen::Vector3d n = scaled_normal_direction(patch, uvw);
+  if (n.squaredNorm() == 0.0) n = scaled_normal_direction(patch, uvw + 1e-6 * (Barycentric::Constant(1.0 / 3.0) - uvw));
   return n.squaredNorm() > 0.0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
 }
 

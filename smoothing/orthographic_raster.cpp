@@ -1,5 +1,7 @@
 #include "smoothing/orthographic_raster.h"
 
+#include "core/unit_scale.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -46,7 +48,7 @@ void rasterize(const TriangleMesh& mesh, bool interpolate_normals, const Orthogr
     Eigen::Vector3d p[3], n[3];
     for (int c = 0; c < 3; ++c) p[c] = view.to_screen(P.row(mesh.faces(f, c)));
     const Eigen::Vector3d a = P.row(mesh.faces(f, 0)), b = P.row(mesh.faces(f, 1)), c2 = P.row(mesh.faces(f, 2));
-    const Eigen::Vector3d face = (view.rows * (b - a).cross(c2 - a)).normalized();
+    const Eigen::Vector3d face = (view.rows * scaled_cross(b - a, c2 - a)).normalized();
     for (int c = 0; c < 3; ++c)
       n[c] = smooth ? Eigen::Vector3d(view.rows * mesh.vertices.normals.row(mesh.faces(f, c)).transpose()) : face;
     const double area = (p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[2].x() - p[0].x()) * (p[1].y() - p[0].y());

@@ -62,7 +62,10 @@ struct Stencil {
       }
   }
 
-  double deviation(const CubicTriangle& patch, std::vector<Eigen::Vector3d>& points) const {
+  // `scale` (a power of two, surface_scale) brings the gaps into the range
+  // where their squares neither overflow nor underflow; the answer is
+  // scaled back, exactly.
+  double deviation(const CubicTriangle& patch, std::vector<Eigen::Vector3d>& points, const SurfaceScale& scale) const {
     points.resize(grid.size());
     for (std::size_t g = 0; g < grid.size(); ++g) points[g] = combine(patch, grid[g]);
     double largest = 0;
@@ -72,23 +75,52 @@ struct Stencil {
       const Eigen::Vector3d& r = points[static_cast<std::size_t>(triangles[t][2])];
       const std::array<Eigen::Vector3d, 4> flat = {(p + q + r) / 3, (p + q) / 2, (q + r) / 2, (r + p) / 2};
       for (std::size_t s = 0; s < 4; ++s)
-        largest = std::max(largest, (combine(patch, samples[t][s]) - flat[s]).squaredNorm());
+        largest = std::max(largest, ((combine(patch, samples[t][s]) - flat[s]) * scale.down).squaredNorm());
     }
-    return std::sqrt(largest);
+    return std::sqrt(largest) * scale.up;
   }
 };
 
+// The control points' bounding box, as half its widths (finite wherever the
+// points are, even where the widths themselves would overflow).
+Eigen::Vector3d half_widths(const BezierSurface& surface) {
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (const CubicTriangle& patch : surface.patches)
+    for (const Eigen::Vector3d& b : patch) {
+      low = low.cwiseMin(b);
+      high = high.cwiseMax(b);
+    }
+  return high / 2 - low / 2;
+}
+
 }  // namespace
+
+SurfaceScale surface_scale(const BezierSurface& surface) {
+  SurfaceScale scale;
+  if (surface.patches.empty()) return scale;
+  const double widest = half_widths(surface).maxCoeff();
+  int exponent = 0;
+  if (widest > 0 && std::isfinite(widest)) std::frexp(widest, &exponent);
+  // Within 2^±100 every square of a gap is a normal number: no scaling,
+  // the same arithmetic as ever. Beyond, the widest half width becomes
+  // [1/2, 1) (2^±exponent stays a normal double: |exponent| ≤ 1024).
+  if (std::abs(exponent) > 100) {
+    scale.down = std::ldexp(1.0, -exponent);
+    scale.up = std::ldexp(1.0, exponent);
+  }
+  return scale;
+}
 
 double tessellation_deviation(const BezierSurface& surface, int density) {
   if (density < 1) throw InvalidInput("--density must be at least 1, got " + std::to_string(density));
   const Stencil stencil(density);
+  const SurfaceScale scale = surface_scale(surface);
   // The largest of maxima: the same in any order, on any number of threads.
   const std::vector<double> partial =
       blockwise<double>(surface.patches.size(), 1024, [&](std::size_t begin, std::size_t end, double& largest) {
         std::vector<Eigen::Vector3d> points;
         for (std::size_t p = begin; p < end; ++p)
-          largest = std::max(largest, stencil.deviation(surface.patches[p], points));
+          largest = std::max(largest, stencil.deviation(surface.patches[p], points, scale));
       });
   return partial.empty() ? 0.0 : *std::max_element(partial.begin(), partial.end());
 }
@@ -99,6 +131,7 @@ ChosenTessellation adaptive_tessellation(const BezierSurface& surface, double to
   if (max_density < 1) throw InvalidInput("the largest tessellation density must be at least 1");
   std::vector<Stencil> stencils;
   for (int n = 1; n <= max_density; ++n) stencils.emplace_back(n);
+  const SurfaceScale scale = surface_scale(surface);
   struct Partial {
     double deviation = 0;
     std::size_t above = 0;
@@ -109,9 +142,9 @@ ChosenTessellation adaptive_tessellation(const BezierSurface& surface, double to
         std::vector<Eigen::Vector3d> points;
         for (std::size_t p = begin; p < end; ++p) {
           int n = 1;
-          double deviation = stencils[0].deviation(surface.patches[p], points);
+          double deviation = stencils[0].deviation(surface.patches[p], points, scale);
           while (deviation > tolerance && n < max_density)
-            deviation = stencils[static_cast<std::size_t>(n++)].deviation(surface.patches[p], points);
+            deviation = stencils[static_cast<std::size_t>(n++)].deviation(surface.patches[p], points, scale);
           density[p] = n;
           out.deviation = std::max(out.deviation, deviation);
           out.above += deviation > tolerance;
@@ -130,13 +163,11 @@ ChosenTessellation adaptive_tessellation(const BezierSurface& surface, double to
 
 double default_tessellation_tolerance(const BezierSurface& surface) {
   if (surface.patches.empty()) return 0;
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
-  for (const CubicTriangle& patch : surface.patches)
-    for (const Eigen::Vector3d& b : patch) {
-      low = low.cwiseMin(b);
-      high = high.cwiseMax(b);
-    }
-  return 2e-4 * (high - low).norm();
+  // 2e-4 of the diagonal, from the half widths scaled as the deviations are
+  // (the diagonal of coordinates near 1e160 overflows, of those near
+  // 1e-160 underflows to 0); bit for bit 2e-4 · |high − low| otherwise.
+  const SurfaceScale scale = surface_scale(surface);
+  return 4e-4 * ((half_widths(surface) * scale.down).norm() * scale.up);
 }
 
 ChosenTessellation choose_tessellation(const BezierSurface& surface, std::optional<int> fixed) {

@@ -12,6 +12,14 @@
 
 namespace scanstation {
 
+/// A power of two that brings a surface's extent near 1 (down) and its
+/// inverse (up): both 1 unless the extent is beyond 2^±100, where the
+/// squares of lengths overflow or underflow. Scaling by it is exact.
+struct SurfaceScale {
+  double down = 1.0, up = 1.0;
+};
+SurfaceScale surface_scale(const BezierSurface& surface);
+
 /// The largest distance between the surface and its tessellation at
 /// `density` segments per patch edge (tessellate()), both taken at the same
 /// parameter: over every tessellation triangle, at its centroid and its edge

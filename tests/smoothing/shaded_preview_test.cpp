@@ -44,6 +44,21 @@ TEST(ShadedPreview, ShowsTheBoundaryAndTheSmoothSurfaceFromBothSides) {
     }
 }
 
+// The picture of an object scaled by a power of two is the picture of the
+// object: the boundary's face normals came out zero (black faces) for
+// coordinates near 1e-160 and NaN near 1e160.
+TEST(ShadedPreview, TheSamePictureAtAnyScale) {
+  const TriangleMesh mesh = sim::ellipsoid({30, 20, 40}, 2);
+  const TriangleMesh smooth = tessellate(smooth_surface(mesh).surface, 2);
+  const std::string picture = shaded_preview_png(mesh, smooth, {64, Eigen::Vector3d::UnitZ()});
+  for (const double scale : {0x1p-560, 0x1p560}) {
+    TriangleMesh small_or_large = mesh, smooth_scaled = smooth;
+    small_or_large.vertices.positions *= scale;
+    smooth_scaled.vertices.positions *= scale;
+    EXPECT_EQ(shaded_preview_png(small_or_large, smooth_scaled, {64, Eigen::Vector3d::UnitZ()}), picture) << scale;
+  }
+}
+
 TEST(ShadedPreview, AnInsideOutBoundaryShowsRed) {
   TriangleMesh mesh = sim::icosphere(2);
   mesh.faces.col(1).swap(mesh.faces.col(2));

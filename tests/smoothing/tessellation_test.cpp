@@ -15,6 +15,7 @@
 #include <array>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -192,6 +193,33 @@ TEST(Tessellation, AdaptivePatchesTakeTheSmallestDensityWithinTheTolerance) {
   EXPECT_GT(std::count_if(at.begin(), at.end(), [](std::size_t c) { return c > 0; }), 1);
   EXPECT_LT(chosen.plan.face_count(), uniform_plan(surface, chosen.largest_density).face_count());
   expect_watertight(tessellate(surface, chosen.plan), chosen.plan.face_count());
+}
+
+// A surface scaled by a power of two is tessellated as the surface itself:
+// the same densities, the same unit normals bit for bit, the positions, the
+// deviation and the default tolerance scaled exactly. Near 1e±160 the
+// squares of lengths leave the double range: the tolerance came out
+// infinite (and `smooth` refused), the deviations 0 (every patch at
+// density 1) and the normals zero.
+TEST(Tessellation, ScaledByAPowerOfTwoTheSameTessellation) {
+  const BezierSurface surface = test::six_split_surface(test::bumpy_sphere(4, 0.15));
+  const ChosenTessellation chosen = choose_tessellation(surface, std::nullopt);
+  const TriangleMesh mesh = tessellate(surface, chosen.plan);
+  ASSERT_GT(chosen.largest_density, 1);
+  for (const double scale : {0x1p-1000, 0x1p-540, 0x1p-110, 0x1p110, 0x1p540, 0x1p1000}) {
+    BezierSurface scaled = surface;
+    for (CubicTriangle& patch : scaled.patches)
+      for (Eigen::Vector3d& b : patch) b *= scale;
+    EXPECT_EQ(default_tessellation_tolerance(scaled), default_tessellation_tolerance(surface) * scale) << scale;
+    const ChosenTessellation again = choose_tessellation(scaled, std::nullopt);
+    EXPECT_EQ(again.plan.inner, chosen.plan.inner) << scale;
+    EXPECT_EQ(again.plan.edge, chosen.plan.edge) << scale;
+    EXPECT_EQ(again.deviation, chosen.deviation * scale) << scale;
+    const TriangleMesh dense = tessellate(scaled, again.plan);
+    EXPECT_EQ(dense.faces, mesh.faces) << scale;
+    EXPECT_EQ(dense.vertices.normals, mesh.vertices.normals) << scale;
+    EXPECT_EQ(Eigen::MatrixX3d(dense.vertices.positions / scale), mesh.vertices.positions) << scale;
+  }
 }
 
 TEST(Tessellation, UniformPlanIsTheRegularGrid) {
