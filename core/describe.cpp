@@ -6,6 +6,7 @@
 #include "core/predicates.h"
 #include "core/self_intersections.h"
 #include "core/unique_points.h"
+#include "core/unit_scale.h"
 
 namespace scanstation {
 
@@ -15,7 +16,7 @@ nlohmann::json box_json(const Box& box) {
   if (box.isEmpty()) return nullptr;
   return {{"min", std::vector<double>(box.min().data(), box.min().data() + box.min().size())},
           {"max", std::vector<double>(box.max().data(), box.max().data() + box.max().size())},
-          {"diagonal", box.diagonal().norm()}};
+          {"diagonal", 2 * scaled_norm(box.max() / 2 - box.min() / 2)}};  // the widths may overflow
 }
 
 nlohmann::json topology_json(const MeshTopology& t) {

@@ -1,5 +1,7 @@
 #include "core/far_points.h"
 
+#include "core/unit_scale.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,6 +30,9 @@ bool has_point_within(const Eigen::MatrixXd& V, const std::vector<int>& by_x, co
 }  // namespace
 
 SpikedPoints spiked_points(const Eigen::MatrixXd& V, const Eigen::MatrixXi& cycles, double factor) {
+  // Edge lengths near 1e±160 or beyond come out 0 or infinite: the same
+  // points from the copy scaled by a power of two.
+  if (const double s = unit_scale(V); beyond_squares(s)) return spiked_points(V * s, cycles, factor);
   std::vector<double> shortest(static_cast<std::size_t>(V.rows()), std::numeric_limits<double>::infinity());
   const Eigen::Index k = cycles.cols();
   for (Eigen::Index f = 0; f < cycles.rows(); ++f)

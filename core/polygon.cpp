@@ -1,5 +1,7 @@
 #include "core/polygon.h"
 
+#include "core/unit_scale.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -9,9 +11,19 @@ namespace scanstation {
 
 // Relative to the bounding box's centre, as enclosed_volume (far from the
 // origin the shoelace terms cancel and their rounding swamps the area).
+// Both scaled by a power of two where the squares of lengths leave the
+// double range (as surface_area).
+Polygon2 scaled(const Polygon2& polygon, double s) {
+  Polygon2 out = polygon;
+  out.vertices *= s;
+  return out;
+}
+
 double twice_signed_area(const Polygon2& polygon) {
   const Eigen::Index n = polygon.size();
   if (n == 0) return 0.0;
+  if (const double s = unit_scale(polygon.vertices); beyond_squares(s))
+    return std::ldexp(twice_signed_area(scaled(polygon, s)), -2 * std::ilogb(s));
   const Eigen::RowVector2d o = 0.5 * (polygon.vertices.colwise().minCoeff() + polygon.vertices.colwise().maxCoeff());
   double sum = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -24,6 +36,9 @@ double twice_signed_area(const Polygon2& polygon) {
 
 double perimeter(const Polygon2& polygon) {
   const Eigen::Index n = polygon.size();
+  if (n == 0) return 0.0;
+  if (const double s = unit_scale(polygon.vertices); beyond_squares(s))
+    return std::ldexp(perimeter(scaled(polygon, s)), -std::ilogb(s));
   double sum = 0.0;
   for (Eigen::Index i = 0; i < n; ++i)
     sum += (polygon.vertices.row((i + 1) % n) - polygon.vertices.row(i)).norm();

@@ -36,14 +36,34 @@ double unit_scale(const Eigen::MatrixBase<Derived>& P) {
   return smallest * scale < std::numeric_limits<double>::min() * 0x1p53 ? 1.0 : scale;
 }
 
+/// Whether coordinates whose unit_scale is `scale` can give measures whose
+/// intermediate terms leave the double range: beyond 2^±100 (the scale's
+/// exponent), as the squared length of a cross product of edges, the fourth
+/// power of the coordinates' scale, can, even for the shortest edges
+/// rounding allows. Then measures are taken on the scaled copy and scaled
+/// back (exact); within it they are taken as they are, the same to the bit.
+inline bool beyond_squares(double scale) { return std::abs(std::ilogb(scale)) > 100; }
+
+/// The Euclidean norm of v without overflow or underflow of its squares:
+/// v's norm to the bit wherever that is representable.
+template <typename Derived>
+double scaled_norm(const Eigen::MatrixBase<Derived>& v) {
+  const double largest = v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0;
+  if (!(largest > 0.0) || !std::isfinite(largest)) return v.norm();
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return std::ldexp(v.unaryExpr([exponent](double x) { return std::ldexp(x, -exponent); }).norm(), exponent);
+}
+
 /// v times the power of two that brings its largest |component| into
 /// [1/2, 1): the same direction, exactly (v itself when zero or not finite).
-inline Eigen::Vector3d near_unit(const Eigen::Vector3d& v) {
+template <int N>
+Eigen::Matrix<double, N, 1> near_unit(const Eigen::Matrix<double, N, 1>& v) {
   const double largest = v.cwiseAbs().maxCoeff();
   if (!(largest > 0.0) || !std::isfinite(largest)) return v;
   int exponent = 0;
   std::frexp(largest, &exponent);
-  return {std::ldexp(v.x(), -exponent), std::ldexp(v.y(), -exponent), std::ldexp(v.z(), -exponent)};
+  return v.unaryExpr([exponent](double x) { return std::ldexp(x, -exponent); });
 }
 
 /// A vector along u × v whose length is near 1 at any scale of u and v: the

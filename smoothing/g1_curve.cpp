@@ -1,6 +1,7 @@
 #include "smoothing/g1_curve.h"
 
 #include "core/errors.h"
+#include "core/unit_scale.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +24,15 @@ G1Curve g1_curve(const Polygon2& polygon, const Eigen::MatrixX2d& tangents) {
   if (n < 3) throw InvalidInput("a closed curve needs at least 3 vertices");
   if (tangents.rows() != n) throw InvalidInput("expected one tangent per polygon vertex");
   const auto& V = polygon.vertices;
+  // As polygon_tangents: from the copy scaled by a power of two where squared
+  // lengths would leave the double range, the control points scaled back.
+  if (const double s = unit_scale(V); beyond_squares(s)) {
+    Polygon2 scaled = polygon;
+    scaled.vertices *= s;
+    G1Curve curve = g1_curve(scaled, tangents);
+    curve.controls /= s;
+    return curve;
+  }
   G1Curve curve;
   curve.tangents = tangents;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -62,8 +72,9 @@ double max_tangent_angle(const G1Curve& curve) {
   double worst = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Index before = (i + n - 1) % n;
-    const Eigen::Vector2d end = curve.control(before, 3) - curve.control(before, 2);
-    const Eigen::Vector2d start = curve.control(i, 1) - curve.control(i, 0);
+    // Near unit length: at any scale the products stay in range.
+    const Eigen::Vector2d end = near_unit<2>(curve.control(before, 3) - curve.control(before, 2));
+    const Eigen::Vector2d start = near_unit<2>(curve.control(i, 1) - curve.control(i, 0));
     const double angle = std::atan2(std::abs(end.x() * start.y() - end.y() * start.x()), end.dot(start));
     worst = std::max(worst, angle);
   }

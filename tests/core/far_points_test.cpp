@@ -36,6 +36,18 @@ TEST(FarPoints, NoneOnAnEvenSurfaceAndTheSpikeOnceAVertexFliesOff) {
   EXPECT_EQ(far_points(spiked, sphere.faces, ratio * 0.99), std::vector<int>({77}));
 }
 
+// The same spike at any scale: near 1e±160 every edge length came out 0 or
+// infinite, and no point was far.
+TEST(FarPoints, TheSameSpikeScaledByAPowerOfTwo) {
+  const TriangleMesh sphere = sim::icosphere(3);
+  Eigen::MatrixX3d spiked = sphere.vertices.positions;
+  spiked.row(12) *= 1000.0;
+  for (const int k : {-1000, -560, 560, 1000}) {
+    const Eigen::MatrixX3d scaled = spiked * std::ldexp(1.0, k);
+    EXPECT_EQ(far_points(scaled, sphere.faces), std::vector<int>({12})) << k;
+  }
+}
+
 TEST(FarPoints, APointAmongOthersReachedByLongEdgesIsSpikedNotFar) {
   // The sphere's vertices and one more a hundredth of a radius off vertex
   // 5, which the faces reach only with a triangle across the sphere: its

@@ -1,8 +1,10 @@
+#include "core/describe.h"
 #include "core/mesh_measures.h"
 #include "core/polygon.h"
 #include "sim/shapes.h"
 #include "test_support.h"
 
+#include <cmath>
 #include <numbers>
 
 namespace scanstation {
@@ -30,6 +32,40 @@ TEST(MeshMeasures, VolumeAndAreaDoNotDependOnWhereTheMeshIs) {
     EXPECT_NEAR(surface_area(moved, sphere.faces), area, 1e-7 * area) << offset;
   }
   EXPECT_EQ(enclosed_volume(sphere.vertices.positions, Eigen::MatrixX3i(0, 3)), 0.0);
+}
+
+// Scaled by a power of two, the measures scale exactly, as long as the
+// result is a double: near 1e±160 the squares of the edge lengths left the
+// range, and areas and diagonals that are ordinary doubles came out 0 or
+// infinite.
+TEST(MeshMeasures, ScaledByAPowerOfTwoTheMeasuresScaleExactly) {
+  TriangleMesh sphere = sim::icosphere(3);
+  const double area = surface_area(sphere.vertices.positions, sphere.faces);
+  const double volume = enclosed_volume(sphere.vertices.positions, sphere.faces);
+  const double diagonal = describe(sphere)["bounding_box"]["diagonal"];
+  for (const int k : {-1000, -600, -300, 300, 600, 1000}) {
+    const double s = std::ldexp(1.0, k);
+    const Eigen::MatrixX3d V = sphere.vertices.positions * s;
+    const auto expected = [](double x, int power) { return std::ldexp(x, power); };
+    if (std::abs(2 * k) < 1000) EXPECT_EQ(surface_area(V, sphere.faces), expected(area, 2 * k)) << k;
+    if (std::abs(3 * k) < 1000) EXPECT_EQ(enclosed_volume(V, sphere.faces), expected(volume, 3 * k)) << k;
+    if (k < 0) {  // below the range: 0, not a wrong number
+      EXPECT_GE(surface_area(V, sphere.faces), 0.0);
+      EXPECT_GE(enclosed_volume(V, sphere.faces), 0.0);
+    }
+    TriangleMesh scaled = sphere;
+    scaled.vertices.positions = V;
+    EXPECT_EQ(describe(scaled)["bounding_box"]["diagonal"].get<double>(), expected(diagonal, k)) << k;
+  }
+  Polygon2 triangle;
+  triangle.vertices.resize(3, 2);
+  triangle.vertices << 0, 0, 3, 0, 0, 4;
+  for (const int k : {-520, 520}) {
+    Polygon2 scaled = triangle;
+    scaled.vertices *= std::ldexp(1.0, k);
+    EXPECT_EQ(twice_signed_area(scaled), std::ldexp(12.0, 2 * k)) << k;
+    EXPECT_EQ(perimeter(scaled), std::ldexp(12.0, k)) << k;
+  }
 }
 
 TEST(PolygonMeasures, AreaDoesNotDependOnWhereThePolygonIs) {

@@ -69,6 +69,25 @@ TEST(G1Curve, InterpolatesEveryVertexAndIsG1Everywhere) {
   }
 }
 
+// Scaled by a power of two, the curve is the ordinary one scaled: near
+// 1e±160 the squared edge lengths left the double range, every vertex
+// looked repeated (underflow) or every tangent NaN (overflow).
+TEST(G1Curve, ScaledByAPowerOfTwoTheCurveScalesExactly) {
+  const Polygon2 polygon = star(30, 7);
+  for (const auto weighting : {TangentWeighting::length, TangentWeighting::uniform, TangentWeighting::inverse_length}) {
+    const Eigen::MatrixX2d tangents = polygon_tangents(polygon, weighting);
+    const G1Curve curve = g1_curve(polygon, tangents);
+    for (const int k : {-900, -540, 540, 1000}) {  // at 2^-1000 coordinates near 0 would be subnormal: inexact
+      Polygon2 scaled = polygon;
+      scaled.vertices *= std::ldexp(1.0, k);
+      EXPECT_EQ(polygon_tangents(scaled, weighting), tangents) << k;
+      const G1Curve again = g1_curve(scaled, tangents);
+      EXPECT_EQ(Eigen::MatrixX2d(again.controls * std::ldexp(1.0, -k)), curve.controls) << k;
+      EXPECT_EQ(max_tangent_angle(again), max_tangent_angle(curve)) << k;
+    }
+  }
+}
+
 TEST(G1Curve, CuspsFromBadTangentsAreRepaired) {
   // At v1 the far v0 dominates the length-weighted tangent v2 − v0, which
   // then points away from the near v2: p3* and q0* on the same side.
