@@ -8,6 +8,8 @@
 #include "core/unique_points.h"
 #include "core/unit_scale.h"
 
+#include <future>
+
 namespace scanstation {
 
 namespace {
@@ -41,6 +43,12 @@ nlohmann::json topology_json(const MeshTopology& t) {
 
 nlohmann::json describe(const TriangleMesh& mesh, const std::vector<char>& meet_properly) {
   const auto& P = mesh.vertices.positions;
+  // The topology on another core while this one takes the measures: both
+  // only read the mesh, and on a 1M-point reconstruction they were 0.68 s
+  // and 0.5 s of its report, one after the other.
+  require_face_indices(mesh.faces, mesh.vertex_count());
+  std::future<MeshTopology> topology;
+  if (mesh.face_count() > 0) topology = std::async(std::launch::async, [&] { return mesh_topology(mesh); });
   std::vector<Eigen::Index> first, map;
   const Eigen::Index duplicates = unique_points(P, first, map);
   nlohmann::json j = {{"vertices", mesh.vertex_count()},
@@ -56,13 +64,6 @@ nlohmann::json describe(const TriangleMesh& mesh, const std::vector<char>& meet_
   }
   if (mesh.face_count() == 0) return j;
 
-  const MeshTopology t = mesh_topology(mesh);
-  j["topology"] = topology_json(t);
-  if (t.manifold && t.oriented && mesh.vertices.dimension == 3) {
-    const auto pairs = self_intersections(mesh, meet_properly);
-    j["topology"]["self_intersecting_pairs"] = pairs ? nlohmann::json(*pairs) : nlohmann::json(nullptr);
-    j["topology"]["simple"] = pairs ? nlohmann::json(*pairs == 0) : nlohmann::json(nullptr);
-  }
   j["area"] = surface_area(P, mesh.faces);
   // Faces of three distinct vertices on one line: no topology count sees
   // them (degenerate_faces repeats an index), and a smooth surface or a
@@ -74,9 +75,17 @@ nlohmann::json describe(const TriangleMesh& mesh, const std::vector<char>& meet_
       ++flat;
   }
   j["zero_area_faces"] = flat;
+  const double volume = enclosed_volume(P, mesh.faces);
+  const MeshTopology t = topology.get();
+  j["topology"] = topology_json(t);
+  if (t.manifold && t.oriented && mesh.vertices.dimension == 3) {
+    const auto pairs = self_intersections(mesh, meet_properly);
+    j["topology"]["self_intersecting_pairs"] = pairs ? nlohmann::json(*pairs) : nlohmann::json(nullptr);
+    j["topology"]["simple"] = pairs ? nlohmann::json(*pairs == 0) : nlohmann::json(nullptr);
+  }
   // Only a closed, consistently oriented surface encloses a volume; its sign
   // says whether the faces point out.
-  if (t.closed && t.oriented) j["volume"] = enclosed_volume(P, mesh.faces);
+  if (t.closed && t.oriented) j["volume"] = volume;
   return j;
 }
 

@@ -174,9 +174,13 @@ bool orientable(const std::vector<HalfEdge>& h, std::size_t face_count) {
 
 }  // namespace
 
-MeshTopology mesh_topology(const Eigen::MatrixX3i& F, Eigen::Index vertex_count) {
+void require_face_indices(const Eigen::MatrixX3i& F, Eigen::Index vertex_count) {
   if (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= vertex_count))
     throw InvalidInput("mesh face refers to a vertex index outside [0, " + std::to_string(vertex_count) + ")");
+}
+
+MeshTopology mesh_topology(const Eigen::MatrixX3i& F, Eigen::Index vertex_count) {
+  require_face_indices(F, vertex_count);
   MeshTopology t;
   t.vertices = static_cast<std::size_t>(vertex_count);
   t.faces = static_cast<std::size_t>(F.rows());

@@ -36,6 +36,10 @@ struct MeshTopology {
 /// [0, #V) (the readers guarantee it); throws InvalidInput otherwise.
 MeshTopology mesh_topology(const Eigen::MatrixX3i& F, Eigen::Index vertex_count);
 
+/// Throws InvalidInput unless every index of F lies in [0, vertex_count)
+/// (mesh_topology's first check).
+void require_face_indices(const Eigen::MatrixX3i& F, Eigen::Index vertex_count);
+
 inline MeshTopology mesh_topology(const TriangleMesh& mesh) {
   return mesh_topology(mesh.faces, mesh.vertex_count());
 }

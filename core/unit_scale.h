@@ -48,11 +48,16 @@ inline bool beyond_squares(double scale) { return std::abs(std::ilogb(scale)) > 
 /// v's norm to the bit wherever that is representable.
 template <typename Derived>
 double scaled_norm(const Eigen::MatrixBase<Derived>& v) {
-  const double largest = v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0;
-  if (!(largest > 0.0) || !std::isfinite(largest)) return v.norm();
+  // Plain vectors, so that the sum of squares runs in the order Eigen sums
+  // a plain vector's (an expression of ldexp would add them the other way
+  // round, a last bit apart).
+  const typename Derived::PlainObject plain = v;
+  const double largest = plain.size() > 0 ? plain.cwiseAbs().maxCoeff() : 0.0;
+  if (!(largest > 0.0) || !std::isfinite(largest)) return plain.norm();
   int exponent = 0;
   std::frexp(largest, &exponent);
-  return std::ldexp(v.unaryExpr([exponent](double x) { return std::ldexp(x, -exponent); }).norm(), exponent);
+  const typename Derived::PlainObject scaled = plain.unaryExpr([exponent](double x) { return std::ldexp(x, -exponent); });
+  return std::ldexp(scaled.norm(), exponent);
 }
 
 /// v times the power of two that brings its largest |component| into
