@@ -25,9 +25,15 @@ Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3
   for (Eigen::Index v = 0; v < N.rows(); ++v) {
     if (!in_a_face[static_cast<std::size_t>(v)]) continue;  // not on the surface: no normal, zero
     const double length = N.row(v).norm();
+    // A needle-thin spike (a stray point the boundary reaches, its faces
+    // long and nearly parallel) cancels exactly under the area weighting;
+    // weighing each face alike gives its tip a direction.
     if (!(length > 0.0))
       throw InvalidInput("vertex " + std::to_string(v) +
-                         ": no surface normal (its faces have no area, or they cancel)");
+                         ": no surface normal (its faces have no area, or their normals cancel" +
+                         (weighting == NormalWeighting::uniform
+                              ? std::string(")")
+                              : std::string(": a needle-thin spike? --normals uniform weighs each face alike)")));
     N.row(v) /= length;
   }
   return N;
