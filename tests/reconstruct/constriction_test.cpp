@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <map>
 #include <numbers>
+#include <initializer_list>
 #include <set>
 
 namespace scanstation {
@@ -47,6 +48,17 @@ Eigen::MatrixX3d random_ellipsoid(Eigen::Index n, std::uint64_t seed) {
     P.row(i) = (p.normalized().array() * Eigen::Array3d(3, 2, 1)).matrix().transpose();
   }
   return P;
+}
+
+// The vertices of the named CGAL meshes, then 3000 points of the random
+// ellipsoid of `seed`, each with its name.
+std::vector<std::pair<std::string, Eigen::MatrixX3d>> meshes_and_an_ellipsoid(std::initializer_list<const char*> names,
+                                                                              std::uint64_t seed) {
+  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
+  for (const std::string name : names)
+    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
+  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, seed));
+  return inputs;
 }
 
 // Points sampled at random over the relief mask (the thesis' Figure 5.6), with
@@ -382,11 +394,7 @@ TEST(Constriction3, RealCgalMeshes) {
 // order), every face when no pass after constriction changed the boundary;
 // and the self-intersection count that skips their pairs is the full one.
 TEST(Constriction3, DelaunayFacetsAreDelaunayFacetsAndLeaveTheSimplicityCheckExact) {
-  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
-  for (const std::string name : {"cow", "bull", "cube-meshed", "oblong"})
-    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
-  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, 11));
-  for (const auto& [name, P] : inputs) {
+  for (const auto& [name, P] : meshes_and_an_ellipsoid({"cow", "bull", "cube-meshed", "oblong"}, 11)) {
     const SurfaceReconstruction r = reconstruct_surface(P);
     const std::vector<char> facet = delaunay_facets(r);
     ASSERT_EQ(facet.size(), static_cast<std::size_t>(r.mesh.face_count())) << name;
@@ -449,11 +457,7 @@ TEST(Constriction3, DelaunayFlipsKeepTheGuaranteesAndRecoverDelaunayMeshes) {
 // half-edges and a table of the cells, angles by atan2 (the pass takes
 // acos), with a margin so that rounding cannot decide.
 TEST(Constriction3, CellFlipsLeaveNoDelaunayCellFlipAndKeepTheGuarantees) {
-  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
-  for (const std::string name : {"ellipe0.003", "sphere966", "cactus", "cow", "bull"})
-    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
-  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, 11));
-  for (const auto& [name, P] : inputs) {
+  for (const auto& [name, P] : meshes_and_an_ellipsoid({"ellipe0.003", "sphere966", "cactus", "cow", "bull"}, 11)) {
     const DelaunayComplex<3> dt = delaunay_complex(P);
     const Constriction<3> c = constrict(dt, constriction_options(surface_defaults()));
     std::vector<char> kept = c.kept;
@@ -554,11 +558,7 @@ TEST(Constriction3, CellFlipsKeepTheInteriorAndRecoverADelaunayMesh) {
 // an ellipsoid, where nearly every Delaunay flip is a cell's, and on real
 // meshes where augmentation carved.
 TEST(Constriction3, CellFlipsSkipTheExactTestsAndChangeNothing) {
-  std::vector<std::pair<std::string, Eigen::MatrixX3d>> inputs;
-  for (const std::string name : {"cactus", "triceratops", "ellipe0.003", "hand"})
-    inputs.emplace_back(name, io::read_mesh(test::cgal_data("meshes/" + name + ".off")).vertices.positions);
-  inputs.emplace_back("ellipsoid", random_ellipsoid(3000, 5));
-  for (const auto& [name, P] : inputs) {
+  for (const auto& [name, P] : meshes_and_an_ellipsoid({"cactus", "triceratops", "ellipe0.003", "hand"}, 5)) {
     const DelaunayComplex<3> dt = delaunay_complex(P);
     const Constriction<3> c = constrict(dt, constriction_options(surface_defaults()));
     ASSERT_TRUE(c.all_on_boundary) << name;
