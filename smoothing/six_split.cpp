@@ -154,13 +154,25 @@ struct EdgeSide {
 
 // Equation (9.3b, c) on the half edge V → Z with M = (V, K, Y, Z), rows L =
 // (N_here, X_here, Y_here), R = (N_there, X_there, Y_there); E, F, G linear
-// from (1, f0, g0) at V (Equation 9.3a) to (1, f1, g1) at Z:
-//   (9.3b) (K − V) + 2(Y − K) + f1(N_here − V) + 2f0(X_here − K) + g1(N_there − V) + 2g0(X_there − K) = 0
-//   (9.3c) 2(Y − K) + (Z − Y) + 2f1(X_here − K) + f0(Y_here − Y) + 2g1(X_there − K) + g0(Y_there − Y) = 0
-// with the unknowns' coefficients (2, 2f0, 2g0) and (1 − f0 − g0 at Y, 1 at
-// Z, 2f1, 2g1, f0, g0), and these right-hand sides.
+// from (1, f0, g0) at V (Equation 9.3a) to (e1, f1, g1) at Z:
+//   (9.3b) e1(K − V) + 2(Y − K) + f1(N_here − V) + 2f0(X_here − K) + g1(N_there − V) + 2g0(X_there − K) = 0
+//   (9.3c) 2e1(Y − K) + (Z − Y) + 2f1(X_here − K) + f0(Y_here − Y) + 2g1(X_there − K) + g0(Y_there − Y) = 0
+// with the unknowns' coefficients (2, 2f0, 2g0) and (2e1 − 1 − f0 − g0 at
+// Y, 1 at Z, 2f1, 2g1, f0, g0), and these right-hand sides.
+//
+// Where the condition holds, E·along + F·here + G·there = 0 all along the
+// half edge, so along × there = −(F/G) along × here: the two patches' normals
+// point the same way exactly where F/G > 0. (9.3a) and (9.3d) fix (e0, f0,
+// g0) and (e1, f1, g1) each up to its own factor only; the thesis takes e0 =
+// e1 = 1, but when the signs of (f0, g0) and of the star's (φ, ψ) differ
+// (a thin macro triangle whose cross-edge points lean back from V, as at the
+// cap of a turntable scan), F and G then both pass through zero between V
+// and Z and the surface folds between them — a singular point on each side,
+// often narrower than any sampling. e1 = −1 keeps F and G off zero instead
+// (E passes through it, where here and there point exactly apart).
 struct HalfEdge {
-  double f0, g0, f1, g1;
+  double f0, g0, e1, f1, g1;
+  double y_c;  // Y's coefficient in (9.3c)
   Point rhs_b, rhs_c;
   bool end_fits;  // (9.3a) holds at V (see end_fits)
 };
@@ -168,9 +180,11 @@ struct HalfEdge {
 HalfEdge half_edge(const Point& V, const Point& K, const Point& N_here, const Point& N_there,
                    const Eigen::Vector2d& at_Z) {
   const Eigen::Vector2d c0 = end_coefficients(K - V, N_here - V, N_there - V);
-  HalfEdge h{c0.x(), c0.y(), at_Z.x(), at_Z.y(), {}, {}, end_fits(K - V, N_here - V, N_there - V, c0)};
-  h.rhs_b = -(K - V) + 2.0 * K - h.f1 * (N_here - V) - h.g1 * (N_there - V) + 2.0 * (h.f0 + h.g0) * K;
-  h.rhs_c = 2.0 * (1.0 + h.f1 + h.g1) * K;
+  const double e1 = (c0.x() * at_Z.x() < 0.0 && c0.y() * at_Z.y() < 0.0) ? -1.0 : 1.0;
+  HalfEdge h{c0.x(), c0.y(), e1, e1 * at_Z.x(), e1 * at_Z.y(), 2.0 * e1 - 1.0 - c0.x() - c0.y(), {}, {},
+             end_fits(K - V, N_here - V, N_there - V, c0)};
+  h.rhs_b = -e1 * (K - V) + 2.0 * K - h.f1 * (N_here - V) - h.g1 * (N_there - V) + 2.0 * (h.f0 + h.g0) * K;
+  h.rhs_c = 2.0 * (e1 + h.f1 + h.g1) * K;
   return h;
 }
 
@@ -201,7 +215,7 @@ Constraints step5_constraints(double phi, double psi, const HalfEdge& a, const H
     A(row, X_here) = 2.0 * h.f0;
     A(row, X_there) = 2.0 * h.g0;
     rhs.row(row) = h.rhs_b.transpose();
-    A(row + 1, Y) = 1.0 - h.f0 - h.g0;
+    A(row + 1, Y) = h.y_c;
     A(row + 1, Z) = 1.0;
     A(row + 1, X_here) = 2.0 * h.f1;
     A(row + 1, X_there) = 2.0 * h.g1;
@@ -216,30 +230,26 @@ Constraints step5_constraints(double phi, double psi, const HalfEdge& a, const H
 
 // The closest point of the well-posed part of all eight constraints
 // (pseudo-inverse, small singular values dropped), for (nearly) dependent
-// constraints, or the damped step when that would move a point farther than
-// `reach`; true when the constraints were all met all the same.
-bool closest_solution(Points& x, const Points& old, double phi, double psi, const HalfEdge& a, const HalfEdge& b,
-                      double reach) {
+// constraints: true when it meets them all the same without moving a point
+// farther than `reach`.
+bool pseudo_inverse_solution(Points& x, const Points& old, double phi, double psi, const HalfEdge& a,
+                             const HalfEdge& b, double reach) {
   Eigen::Matrix<double, 8, 3> rhs;
   const Constraints A = step5_constraints(phi, psi, a, b, rhs);
-  const Eigen::Matrix<double, 8, 3> r = rhs - A.lazyProduct(old);
   Eigen::CompleteOrthogonalDecomposition<Constraints> cod;
   cod.setThreshold(1e-6);
   cod.compute(A);
-  x = old + cod.solve(r);
-  if ((x - old).rowwise().norm().maxCoeff() <= reach) {
-    // Met when every constraint holds to a rounding-level share of the
-    // points' scale, each row divided by its own coefficients: a tolerance
-    // scaled by all of them together let a row with coefficients in the
-    // thousands miss by 1e-9 edge lengths, and the edge by 0.02 rad.
-    const Eigen::Matrix<double, 8, 3> miss = A.lazyProduct(x) - rhs;
-    const double scale = old.norm() + rhs.norm();
-    for (int i = 0; i < 8; ++i)
-      if (miss.row(i).norm() > 1e-12 * A.row(i).norm() * scale) return false;
-    return true;
-  }
-  x = old + damped_step(A, r, reach);
-  return false;
+  x = old + cod.solve(rhs - A.lazyProduct(old));
+  if ((x - old).rowwise().norm().maxCoeff() > reach) return false;
+  // Met when every constraint holds to a rounding-level share of the
+  // points' scale, each row divided by its own coefficients: a tolerance
+  // scaled by all of them together let a row with coefficients in the
+  // thousands miss by 1e-9 edge lengths, and the edge by 0.02 rad.
+  const Eigen::Matrix<double, 8, 3> miss = A.lazyProduct(x) - rhs;
+  const double scale = old.norm() + rhs.norm();
+  for (int i = 0; i < 8; ++i)
+    if (miss.row(i).norm() > 1e-12 * A.row(i).norm() * scale) return false;
+  return true;
 }
 
 // Whether the patches on the two sides of a macro half edge fold onto one
@@ -296,9 +306,9 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, double max_mov
   const double B[5][6] = {
       {-(0.5 + phi + psi), 0.5, phi / 2.0, phi / 2.0, psi / 2.0, psi / 2.0},  // the star
       {2.0, 0.0, 2.0 * a.f0, 0.0, 2.0 * a.g0, 0.0},                          // (9.3b) towards V_c
-      {1.5 - a.f0 - a.g0, 0.5, 2.0 * a.f1 + a.f0 / 2.0, a.f0 / 2.0, 2.0 * a.g1 + a.g0 / 2.0, a.g0 / 2.0},  // (9.3c)
+      {a.y_c + 0.5, 0.5, 2.0 * a.f1 + a.f0 / 2.0, a.f0 / 2.0, 2.0 * a.g1 + a.g0 / 2.0, a.g0 / 2.0},  // (9.3c)
       {0.0, 2.0, 0.0, 2.0 * b.f0, 0.0, 2.0 * b.g0},                                                        // (9.3b) towards V_n
-      {0.5, 1.5 - b.f0 - b.g0, b.f0 / 2.0, 2.0 * b.f1 + b.f0 / 2.0, b.g0 / 2.0, 2.0 * b.g1 + b.g0 / 2.0}};  // (9.3c)
+      {0.5, b.y_c + 0.5, b.f0 / 2.0, 2.0 * b.f1 + b.f0 / 2.0, b.g0 / 2.0, 2.0 * b.g1 + b.g0 / 2.0}};  // (9.3c)
   const Point c_rhs[5] = {Point::Zero(), a.rhs_b, a.rhs_c, b.rhs_b, b.rhs_c};
   const auto residual = [&](const Point* u, Point* r) {
     for (int i = 0; i < 5; ++i) {
@@ -390,18 +400,44 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, double max_mov
     for (int k = 0; k < unknowns; ++k) moved = std::max(moved, (x[k] - old[k]).squaredNorm());
     met = moved <= reach * reach;
   }
+  // Where the constraints cannot be met within reach: the damped step on u
+  // alone, Z, Y_f and Y_g kept the means of their pairs, so that the inner
+  // edges to O and O' stay C¹ (Steps 6–7 need no more) and only the macro
+  // edge itself is joined approximately. (Damping all eight rows, the means
+  // among them, let the inner edges crease as well.)
+  const auto damped = [&](double bound) {
+    static const Eigen::Matrix<double, unknowns, 6> moved = [] {
+      Eigen::Matrix<double, unknowns, 6> D = Eigen::Matrix<double, unknowns, 6>::Zero();
+      D(Z, 0) = D(Z, 1) = D(Yf, 2) = D(Yf, 3) = D(Yg, 4) = D(Yg, 5) = 0.5;
+      D(Ya, 0) = D(Yb, 1) = D(Xa, 2) = D(Xb, 3) = D(Xa_there, 4) = D(Xb_there, 5) = 1.0;
+      return D;
+    }();
+    Point r0[5];
+    residual(u_old, r0);
+    Eigen::Matrix<double, 5, 6> Bm;
+    Eigen::Matrix<double, 5, 3> rm;
+    for (int i = 0; i < 5; ++i) {
+      for (int k = 0; k < 6; ++k) Bm(i, k) = B[i][k];
+      rm.row(i) = r0[i].transpose();
+    }
+    const Eigen::Matrix<double, 6, 3> step = damped_step(Bm, rm, bound, moved);
+    for (int k = 0; k < unknowns; ++k) x[k] = old[k] + (moved.row(k) * step).transpose();
+  };
   if (!met) {
     Points old_rows, x_rows;
     for (int k = 0; k < unknowns; ++k) old_rows.row(k) = old[k].transpose();
-    met = closest_solution(x_rows, old_rows, phi, psi, a, b, reach);
-    for (int k = 0; k < unknowns; ++k) x[k] = x_rows.row(k).transpose();
+    met = pseudo_inverse_solution(x_rows, old_rows, phi, psi, a, b, reach);
+    if (met)
+      for (int k = 0; k < unknowns; ++k) x[k] = x_rows.row(k).transpose();
+    else
+      damped(reach);
   }
-  // Meeting the constraints can demand a fold where the vertex coefficients
-  // of (9.3) blow up (a thin macro triangle at a vertex, as near the axis of
-  // a turntable scan): the patches share their tangent planes with normals
-  // turned by π, a spike in the picture. Such an edge is joined by the
-  // damped step instead, with the largest move halved from half an edge
-  // length until the fold is gone — not G¹ there, and counted.
+  // A fold left where the constraints were met needs a vertex whose own
+  // coefficients fold ((9.3a) with f0 g0 < 0, the sign condition failing);
+  // a damped join may fold anywhere. The patches then share their tangent
+  // planes with normals turned by π, a spike in the picture: the damped
+  // step takes over, with the largest move halved from half an edge length
+  // until the fold is gone — not G¹ there, and counted.
   const auto folded = [&] {
     const Point Ma[4] = {s.V[c], s.K[c], x[Ya], x[Z]}, La[3] = {s.N[c], x[Xa], x[Yf]},
                 Ra[3] = {t.N_end, x[Xa_there], x[Yg]};
@@ -411,15 +447,9 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, double max_mov
   };
   if (folded()) {
     met = false;
-    Points old_rows;
-    for (int k = 0; k < unknowns; ++k) old_rows.row(k) = old[k].transpose();
-    Eigen::Matrix<double, 8, 3> rhs;
-    const Constraints A = step5_constraints(phi, psi, a, b, rhs);
-    const Eigen::Matrix<double, 8, 3> r = rhs - A.lazyProduct(old_rows);
     const double length = (s.V[n] - s.V[c]).norm();
     for (double bound = kFoldReach * length; bound >= kFoldReach * length / 64.0; bound /= 2.0) {
-      const Points x_rows = old_rows + damped_step(A, r, bound);
-      for (int k = 0; k < unknowns; ++k) x[k] = x_rows.row(k).transpose();
+      damped(bound);
       if (!folded()) break;
     }
   }
