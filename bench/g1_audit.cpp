@@ -2,10 +2,10 @@
 // report's built-in verification (7 samples inside every patch edge), which
 // can miss a fold narrower than its spacing.
 //
-//   build/bench/g1_audit [--samples S] [--tension T] [--max-move M]
-//                        [--fitted K] MESH.off|MESH.ply ...
+//   build/bench/g1_audit [--samples S] [--scheme six-split|three-split|adaptive-two-split]
+//                        [--tension T] [--max-move M] [--fitted K] MESH.off|MESH.ply ...
 //
-// Each mesh is smoothed with the six-split scheme as `scanstation smooth`
+// Each mesh is smoothed (by default with the six-split) as `scanstation smooth`
 // does (area-weighted normals, or with --fitted K the station flow's planes
 // fitted to K neighbours; --max-move as `smooth --max-move`), then verified
 // at 7 and at S (default 4095) samples per patch edge. One row per mesh:
@@ -28,6 +28,12 @@ namespace {
 
 using namespace scanstation;
 
+SplitScheme scheme(const std::string& name) {
+  for (const SplitScheme s : {SplitScheme::six_split, SplitScheme::three_split, SplitScheme::adaptive_two_split})
+    if (scheme_name(s) == name) return s;
+  throw std::invalid_argument("unknown scheme " + name);
+}
+
 int run(int argc, char** argv) {
   int samples = 4095;
   SurfaceSmoothingOptions options;
@@ -40,6 +46,8 @@ int run(int argc, char** argv) {
     };
     if (arg == "--samples")
       samples = std::stoi(value());
+    else if (arg == "--scheme")
+      options.scheme = scheme(value());
     else if (arg == "--tension")
       options.tension = std::stod(value());
     else if (arg == "--max-move")

@@ -19,7 +19,7 @@ constexpr int Y_first = control_index(1, 0, 2), Y_second = control_index(0, 1, 2
 
 // The ratio λ = e1/e0 of Equation (9.3) is free: (9.3a) and (9.3d) fix each
 // end's coefficients only up to a factor. The thesis sets e0 = e1 = 1; with
-// a least-squares ratio, λ minimises the displacement of L1 and R1 from
+// a least-squares ratio, λ > 0 minimises the displacement of L1 and R1 from
 // their subdivided positions (x(λ) = c + λu + w/λ, a quartic in λ).
 double closest_ratio(const Eigen::Matrix<double, 2, 3>& r, const Eigen::Matrix<double, 2, 3>& u,
                      const Eigen::Matrix<double, 2, 3>& w) {
@@ -79,8 +79,14 @@ bool join_three_split_edge(CubicTriangle& P, CubicTriangle& Q, bool least_square
   const auto solve = [&](const Eigen::Matrix<double, 2, 3>& rhs) -> Eigen::Matrix<double, 2, 3> {
     return inverse * (rhs - A * old);
   };
+  // λ's sign: where (f0, g0) and (f1, g1) have opposite signs, λ > 0 lets F
+  // and G both pass through zero along the edge and the surface fold between
+  // them (see HalfEdge in six_split.cpp); λ < 0 keeps F/G > 0.
+  const double sign = (f0 * f1 < 0.0 && g0 * g1 < 0.0) ? -1.0 : 1.0;
   const double lambda =
-      least_squares_ratio && independent ? closest_ratio(solve(fixed), inverse * with_lambda, inverse * with_inverse) : 1.0;
+      sign * (least_squares_ratio && independent
+                  ? closest_ratio(solve(fixed), sign * inverse * with_lambda, sign * inverse * with_inverse)
+                  : 1.0);
   const Eigen::Matrix<double, 2, 3> rhs = fixed + lambda * with_lambda + with_inverse / lambda;
   Eigen::Matrix<double, 2, 3> solution = old + solve(rhs);
   // Nearly dependent conditions can demand L1, R1 far off the surface (a

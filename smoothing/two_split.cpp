@@ -267,11 +267,17 @@ struct LinearEdge {
   LinearEdge(const Vector3& V_, const Vector3& K_, Unknown Y_, const Vector3& L0_, Unknown XL_, Unknown YL_,
              const Vector3& R0_, Unknown XR_, Unknown YR_, const Vector3& at_Z_)
       : V(V_), K(K_), L0(L0_), R0(R0_), Y(Y_), XL(XL_), YL(YL_), XR(XR_), YR(YR_),
-        at_V(end_coefficients(K_ - V_, L0_ - V_, R0_ - V_)), at_Z(at_Z_) {}
+        at_V(end_coefficients(K_ - V_, L0_ - V_, R0_ - V_)), at_Z(at_Z_) {
+    // at_Z's sign is free too: the one that gives F and G the signs they
+    // have at V, so that neither passes through zero along the edge (where
+    // the surface would fold, see HalfEdge in six_split.cpp).
+    if (at_V.x() * at_Z[1] < 0.0 && at_V.y() * at_Z[2] < 0.0) at_Z = -at_Z;
+  }
 
-  // The G¹ orientation (§9.6): L and R on opposite sides at both ends.
+  // The G¹ orientation (§9.6): F/G > 0 all along the edge, i.e. f0, g0, f1
+  // and g1 of one sign.
   bool oriented() const {
-    return at_V.x() < 0.0 && at_V.y() < 0.0 && at_Z[0] > 0.0 && at_Z[1] < 0.0 && at_Z[2] < 0.0 &&
+    return at_V.x() * at_V.y() > 0.0 && at_V.x() * at_Z[1] > 0.0 && at_V.y() * at_Z[2] > 0.0 &&
            end_fits(K - V, L0 - V, R0 - V, at_V);
   }
 

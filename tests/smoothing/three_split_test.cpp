@@ -61,6 +61,17 @@ TEST(ThreeSplit, IsG1OnRealMeshes) {
   for (const std::string& name : test::real_mesh_names()) expect_g1(test::real_mesh(name), name);
 }
 
+// λ > 0 where the two ends' (f, g) have opposite signs folded the surface
+// between F's and G's zeros: by π on the scanned boundary, and on cactus
+// in a stretch the built-in 7 samples missed. λ's sign now keeps F/G > 0.
+TEST(ThreeSplit, NoFoldBetweenTheSamples) {
+  Eigen::MatrixX3d N;
+  const G1Verification scanned = verify_g1(smooth(test::scanned_boundary(), N), 255);
+  EXPECT_LT(scanned.max_normal_angle, 1e-8);
+  const G1Verification cactus = verify_g1(smooth(test::real_mesh("cactus.off"), N), 511);
+  EXPECT_LT(cactus.max_normal_angle_exact, 1e-8);  // away from its two dependent edges
+}
+
 TEST(ThreeSplit, IsInvariantUnderScalingAndOffset) {
   const TriangleMesh mesh = test::bumpy_sphere(3, 0.1);
   for (const double scale : {1e-8, 1e8}) {
