@@ -1,6 +1,7 @@
 // How continuous a Bézier surface really is: the tangent plane residual of
 // Equation (8.7) and the angle between the unit normals of the two patches
-// (Theorem 8.1) at sample points along every shared patch edge.
+// (Theorem 8.1) at sample points along every shared patch edge, and whether
+// those normals point apart anywhere on it (exactly, not by samples).
 #pragma once
 
 #include "smoothing/bezier_surface.h"
@@ -24,6 +25,9 @@ struct G1Verification {
   double max_residual = 0.0;
   std::size_t shared_edges = 0;
   std::size_t samples = 0;
+  /// shared edges along which the two normals point apart somewhere (a
+  /// fold, found exactly rather than by the samples; its angle counts as π)
+  std::size_t folded_edges = 0;
   std::size_t unmatched_edges = 0;
 };
 

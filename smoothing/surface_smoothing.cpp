@@ -193,6 +193,7 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
               {"max_tangent_plane_residual", s.g1.max_residual},
               {"shared_edges", s.g1.shared_edges},
               {"samples", s.g1.samples},
+              {"folded_edges", s.g1.folded_edges},
               {"unmatched_edges", s.g1.unmatched_edges}}},
       {"oscillation", {{"max_relative", s.oscillation.max_relative},
                         {"mean_relative", s.oscillation.mean_relative},
