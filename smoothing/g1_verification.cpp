@@ -1,6 +1,7 @@
 #include "smoothing/g1_verification.h"
 
 #include "smoothing/blockwise.h"
+#include "smoothing/normals_apart.h"
 #include "smoothing/patch_adjacency.h"
 
 #include <Eigen/Geometry>
@@ -45,42 +46,6 @@ inline Eigen::Vector3d quadratic(const Eigen::Vector3d* b, double s) {
   return (t * t) * b[0] + (2.0 * s * t) * b[1] + (s * s) * b[2];
 }
 
-// The normal along ∇_d × ∇_c, the cross product of two quadratics: a quartic,
-// as Bernstein coefficients (the product rule of Bernstein polynomials).
-using Quartic = std::array<Eigen::Vector3d, 5>;
-Quartic normal_quartic(const EdgeDerivatives& e) {
-  static constexpr double c2[3] = {1, 2, 1}, c4[5] = {1, 4, 6, 4, 1};
-  Quartic n;
-  n.fill(Eigen::Vector3d::Zero());
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) n[i + j] += (c2[i] * c2[j] / c4[i + j]) * e.along[i].cross(e.across[j]);
-  return n;
-}
-
-// Whether the two patches' normals point apart somewhere along their shared
-// edge — a fold, however narrow, that samples can step over: g(s) = n_P(s) ·
-// n_Q(s), of degree 8, reaches 0. Decided from g's Bernstein coefficients
-// (all positive: it never does; an end value ≤ 0: it does), halving the
-// interval where they do not decide, down to 2^-16 of the edge.
-bool normals_point_apart(const Quartic& p, const Quartic& q_reversed) {
-  static constexpr double c4[5] = {1, 4, 6, 4, 1}, c8[9] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
-  std::array<double, 9> g{};
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 5; ++j) g[i + j] += (c4[i] * c4[j] / c8[i + j]) * p[i].dot(q_reversed[4 - j]);
-  const auto reaches_zero = [](const auto& self, const std::array<double, 9>& b, int depth) -> bool {
-    if (b[0] <= 0.0 || b[8] <= 0.0) return true;
-    if (*std::min_element(b.begin(), b.end()) > 0.0 || depth == 0) return false;
-    std::array<double, 9> left, right, level = b;  // de Casteljau at ½
-    for (int r = 0; r < 9; ++r) {
-      left[r] = level[0];
-      right[8 - r] = level[8 - r];
-      for (int k = 0; k < 8 - r; ++k) level[k] = (level[k] + level[k + 1]) / 2.0;
-    }
-    return self(self, left, depth - 1) || self(self, right, depth - 1);
-  };
-  return reaches_zero(reaches_zero, g, 16);
-}
-
 }  // namespace
 
 G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge) {
@@ -120,7 +85,8 @@ G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge) {
       const int kind = approximate(pair) ? 1 : 0;  // 0: joined exactly
       const EdgeDerivatives P(surface.patches[pair.patch_a], pair.edge_a);
       const EdgeDerivatives Q(surface.patches[pair.patch_b], pair.edge_b);
-      if (normals_point_apart(normal_quartic(P), normal_quartic(Q))) {
+      // A fold, however narrow, that the samples may step over.
+      if (reaches_zero(cross_product(P.along, P.across), reversed(cross_product(Q.along, Q.across)))) {
         ++part.folded_edges;
         part.max_angle[kind] = M_PI;
         part.max_tangent[kind] = INFINITY;

@@ -1,6 +1,7 @@
 #include "smoothing/six_split.h"
 
 #include "smoothing/damped_least_squares.h"
+#include "smoothing/normals_apart.h"
 #include "smoothing/macro_patches.h"
 #include "smoothing/tangent_plane_condition.h"
 
@@ -253,18 +254,24 @@ bool pseudo_inverse_solution(Points& x, const Points& old, double phi, double ps
 }
 
 // Whether the patches on the two sides of a macro half edge fold onto one
-// side of it somewhere between its ends (tested at s = ¼, ½, ¾ and at Z):
-// M = (V, K, Y, Z) the edge row, L and R the next rows on either side. The
-// tangent planes agree there (Step 5), so a fold is a normal turned by π.
+// side of it somewhere between its ends: M = (V, K, Y, Z) the edge row, L
+// and R the next rows on either side. The tangent planes agree there (Step
+// 5), so a fold is a normal turned by π; decided exactly (normals_apart.h),
+// however narrow. Where the vertex end itself folds (the sign condition
+// fails at V), no move of Step 5 can mend it, and only s = ¼, ½, ¾ and Z
+// are asked.
 bool folds(const Point* M, const Point* L, const Point* R) {
-  const auto quadratic = [](const Point& p0, const Point& p1, const Point& p2, double t) -> Point {
-    return (1 - t) * (1 - t) * p0 + 2 * t * (1 - t) * p1 + t * t * p2;
+  const Point along[3] = {M[1] - M[0], M[2] - M[1], M[3] - M[2]};
+  const Point here[3] = {L[0] - M[0], L[1] - M[1], L[2] - M[2]};
+  const Point there[3] = {M[0] - R[0], M[1] - R[1], M[2] - R[2]};  // turned, so that apart is ≤ 0
+  const Quartic n_here = cross_product(along, here), n_there = cross_product(along, there);
+  if (n_here[0].dot(n_there[0]) > 0.0) return reaches_zero(n_here, n_there);
+  const auto quadratic = [](const Point* b, double t) -> Point {
+    return (1 - t) * (1 - t) * b[0] + 2 * t * (1 - t) * b[1] + t * t * b[2];
   };
   for (const double t : {0.25, 0.5, 0.75, 1.0}) {
-    const Point along = quadratic(M[1] - M[0], M[2] - M[1], M[3] - M[2], t);
-    const Point here = quadratic(L[0] - M[0], L[1] - M[1], L[2] - M[2], t);
-    const Point there = quadratic(R[0] - M[0], R[1] - M[1], R[2] - M[2], t);
-    if (along.cross(here).dot(along.cross(there)) >= 0.0) return true;
+    const Point a = quadratic(along, t);
+    if (a.cross(quadratic(here, t)).dot(a.cross(quadratic(there, t))) <= 0.0) return true;
   }
   return false;
 }
