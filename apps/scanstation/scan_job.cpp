@@ -237,6 +237,8 @@ void print_results(const nlohmann::json& r) {
                   s["patches"].get<std::size_t>(), s["scheme"].get<std::string>().c_str(),
                   s["g1"]["max_normal_angle"].get<double>(), s["g1"]["max_normal_angle_where_exact"].get<double>(),
                   s["dependent_edges"].get<std::size_t>(), s["sign_condition_violations"].get<std::size_t>());
+    if (const std::size_t folds = s["g1"].value("folded_edges", std::size_t{0}); folds > 0)
+      std::printf("the smooth surface folds (normals turned apart) along %zu patch edge(s)\n", folds);
     if (s.contains("tessellation")) print_tessellation(s["tessellation"]);
   }
   if (r.contains("accuracy")) {

@@ -74,7 +74,8 @@ class SmoothCommand final : public Command {
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
     cli_->add_option("--zebra", zebra_, "Also write a reflection-line (zebra) PNG: smooth surface left, mesh right");
     cli_->footer("The report holds the largest normal angle and tangent-plane residual (Eq. 8.7) over samples on every "
-                 "shared patch edge, the oscillation relative to the edge length, and the vertices whose normals were "
+                 "shared patch edge, the patch edges along which the normals point apart anywhere (folds, found "
+                 "exactly), the oscillation relative to the edge length, and the vertices whose normals were "
                  "adjusted for the G¹ sign condition.");
   }
 
@@ -207,6 +208,8 @@ class SmoothCommand final : public Command {
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
                   "equations (largest normal angle %.3g rad elsewhere)\n",
                   smoothed.sign_condition_violations, surface.dependent_edges.size(), smoothed.g1.max_normal_angle_exact);
+    if (smoothed.g1.folded_edges > 0)
+      std::printf("the surface folds (normals turned apart) along %zu patch edge(s)\n", smoothed.g1.folded_edges);
   }
 
   SurfaceSmoothingOptions smoothing_options(const TriangleMesh& mesh) const {

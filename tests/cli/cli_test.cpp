@@ -642,6 +642,24 @@ TEST(Cli, FlintstoneApproximateInsideIntersect) {
 namespace scanstation {
 namespace {
 
+// CGAL's cow has four vertices where the sign condition cannot hold (their
+// faces' normals fit in no hemisphere): the surface folds there, and the
+// report and the console say where it is not G¹ and that it folds.
+TEST(Cli, SmoothSaysWhereTheSurfaceFolds) {
+  ScratchFolder dir;
+  Outcome r = scanstation("smooth " + path(test::cgal_data("meshes/cow.off")) + " -o " + path(dir / "s.ply") +
+                          " --density 1 --report " + path(dir / "r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json result = nlohmann::json::parse(slurp(dir / "r.json"))["result"];
+  EXPECT_GT(result["sign_condition_violations"].get<int>(), 0);
+  EXPECT_GT(result["g1"]["folded_edges"].get<int>(), 0);
+  EXPECT_EQ(result["g1"]["max_normal_angle"].get<double>(), M_PI);
+  EXPECT_NE(r.out.find("the surface folds (normals turned apart) along " +
+                       std::to_string(result["g1"]["folded_edges"].get<int>()) + " patch edge(s)"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(Cli, SmoothsARealMeshAndAPolygon) {
   ScratchFolder dir;
   const std::string eight = path(test::cgal_data("meshes/eight.off"));
@@ -655,6 +673,7 @@ TEST(Cli, SmoothsARealMeshAndAPolygon) {
   EXPECT_EQ(result["dependent_edges"], 0);  // no edge joined approximately: the angle away from them is the same
   EXPECT_EQ(result["g1"]["max_normal_angle_where_exact"], result["g1"]["max_normal_angle"]);
   EXPECT_EQ(result["g1"]["unmatched_edges"], 0);
+  EXPECT_EQ(result["g1"]["folded_edges"], 0);
   EXPECT_EQ(result["patches"], 6 * result["macro_triangles"].get<int>());  // six-split by default
   EXPECT_EQ(result["tessellation"]["automatic"], false);
   EXPECT_EQ(result["tessellation"]["faces"], 4 * result["patches"].get<int>());  // --density 2
