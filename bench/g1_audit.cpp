@@ -3,11 +3,13 @@
 // can miss a fold narrower than its spacing.
 //
 //   build/bench/g1_audit [--samples S] [--scheme six-split|three-split|adaptive-two-split]
-//                        [--tension T] [--max-move M] [--fitted K] MESH.off|MESH.ply ...
+//                        [--tension T] [--max-move M] [--fitted K] [--flip-turned-faces]
+//                        MESH.off|MESH.ply ...
 //
 // Each mesh is smoothed (by default with the six-split) as `scanstation smooth`
 // does (area-weighted normals, or with --fitted K the station flow's planes
-// fitted to K neighbours; --max-move as `smooth --max-move`), then verified
+// fitted to K neighbours; --max-move and --flip-turned-faces as `smooth`),
+// then verified
 // at 7 and at S (default 4095) samples per patch edge. One row per mesh:
 // macro edges joined approximately (dependent), vertices where the sign
 // condition fails, the largest oscillation (in macro edge lengths), and the largest normal angle overall and where the scheme
@@ -45,16 +47,15 @@ SplitScheme scheme(const std::string& name) {
 // Macro triangles where some patch's normal turns more than 90° from the
 // mean of the surface's unit normals at the triangle's corners (read off
 // the patches there, which interpolate them).
-std::size_t turned_triangles(const BezierSurface& surface, const TriangleMesh& mesh) {
-  const auto& V = mesh.vertices.positions;
-  const auto faces = static_cast<std::size_t>(mesh.face_count());
+std::size_t turned_triangles(const BezierSurface& surface, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  const auto faces = static_cast<std::size_t>(F.rows());
   std::vector<Eigen::Vector3d> mean(faces, Eigen::Vector3d::Zero());
   const Barycentric corner[3] = {Barycentric::UnitX(), Barycentric::UnitY(), Barycentric::UnitZ()};
   for (std::size_t p = 0; p < surface.patches.size(); ++p) {
     const int f = surface.macro[p];
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c)
-        if (evaluate(surface.patches[p], corner[k]) == Eigen::Vector3d(V.row(mesh.faces(f, c))))
+        if (evaluate(surface.patches[p], corner[k]) == Eigen::Vector3d(V.row(F(f, c))))
           mean[f] += unit_normal(surface.patches[p], corner[k]);
   }
   std::vector<bool> turned(faces, false);
@@ -88,6 +89,8 @@ int run(int argc, char** argv) {
       options.tension = std::stod(value());
     else if (arg == "--max-move")
       options.max_move = std::stod(value());
+    else if (arg == "--flip-turned-faces")
+      options.flip_turned_faces = true;
     else if (arg == "--fitted")
       options.fitted_neighbours = std::stoi(value());
     else if (!arg.empty() && arg[0] == '-')
@@ -105,7 +108,7 @@ int run(int argc, char** argv) {
     std::printf("%-28s %9lld %6zu %5zu %7.3f %6zu %6zu %10.3g %10.3g %10.3g %10.3g\n",
                 std::filesystem::path(file).filename().string().c_str(), static_cast<long long>(mesh.faces.rows()),
                 smoothing.surface.dependent_edges.size(), smoothing.sign_condition_violations,
-                smoothing.oscillation.max_relative, turned_triangles(smoothing.surface, mesh),
+                smoothing.oscillation.max_relative, turned_triangles(smoothing.surface, mesh.vertices.positions, smoothing.faces),
                 smoothing.g1.folded_edges,                smoothing.g1.max_normal_angle, smoothing.g1.max_normal_angle_exact, dense.max_normal_angle,
                 dense.max_normal_angle_exact);
   }

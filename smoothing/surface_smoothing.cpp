@@ -7,6 +7,7 @@
 #include "smoothing/sign_condition.h"
 #include "smoothing/six_split.h"
 #include "smoothing/three_split.h"
+#include "smoothing/turned_face_flips.h"
 #include "smoothing/two_split.h"
 
 #include <algorithm>
@@ -109,7 +110,6 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   } catch (const TopologyError& e) {
     throw InvalidInput(e.what());
   }
-  Eigen::MatrixX3d N;
   if (options.given_normals) {
     if (options.given_normals->rows() != V.rows())
       throw InvalidInput("given normals: " + std::to_string(options.given_normals->rows()) + " rows for " +
@@ -124,40 +124,52 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
                            ", " + std::to_string((*options.given_normals)(v, 2)) +
                            ") has no direction: expected a nonzero finite vector");
     }
-    N = options.given_normals->rowwise().normalized();
-  } else if (options.fitted_neighbours > 0) {
-    const auto neighbours = std::min<Eigen::Index>(options.fitted_neighbours, V.rows());
-    N = fitted_vertex_normals(V, mesh.faces, static_cast<int>(neighbours));
-  } else {
-    N = vertex_normals(V, mesh.faces, options.normals);
+  }
+  const auto normals = [&](const Eigen::MatrixX3i& F) -> Eigen::MatrixX3d {
+    if (options.given_normals) return options.given_normals->rowwise().normalized();
+    if (options.fitted_neighbours > 0) {
+      const auto neighbours = std::min<Eigen::Index>(options.fitted_neighbours, V.rows());
+      return fitted_vertex_normals(V, F, static_cast<int>(neighbours));
+    }
+    return vertex_normals(V, F, options.normals);
+  };
+  result.faces = mesh.faces;
+  const Eigen::MatrixX3i& F = result.faces;
+  Eigen::MatrixX3d N = normals(F);
+  if (options.flip_turned_faces) {
+    result.flipped_faces = flip_turned_faces(V, result.faces, N);
+    if (!result.flipped_faces.empty()) {
+      edges = mesh_edges(F);
+      N = normals(F);  // fitted normals take their side from the faces
+    }
   }
   std::vector<char> in_a_face(static_cast<std::size_t>(V.rows()), 0);
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
-    for (int corner = 0; corner < 3; ++corner) in_a_face[static_cast<std::size_t>(mesh.faces(f, corner))] = 1;
+    for (int corner = 0; corner < 3; ++corner) in_a_face[static_cast<std::size_t>(F(f, corner))] = 1;
   result.isolated_vertices = static_cast<std::size_t>(std::count(in_a_face.begin(), in_a_face.end(), 0));
-  result.adjusted_vertices = enforce_sign_condition(V, mesh.faces, N);
+  result.adjusted_vertices = enforce_sign_condition(V, F, N);
   if (options.scheme != SplitScheme::adaptive_two_split) {  // its pairs fall back to the three-split instead
     const std::vector<int> separated = separate_cross_edge_directions(
-        V, mesh.faces, edges,
+        V, F, edges,
         options.scheme == SplitScheme::six_split ? CrossEdgePoints::step_zero : CrossEdgePoints::step_two, N);
     std::vector<int> merged;
     std::set_union(result.adjusted_vertices.begin(), result.adjusted_vertices.end(), separated.begin(),
                    separated.end(), std::back_inserter(merged));
     result.adjusted_vertices = std::move(merged);
   }
-  result.sign_condition_violations = sign_condition_violations(V, mesh.faces, N).size();
+  result.sign_condition_violations = sign_condition_violations(V, F, N).size();
   result.normals_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   const ThreeSplitOptions three_split_options{options.least_squares_ratio, options.tension, options.max_move};
   switch (options.scheme) {
-    case SplitScheme::six_split: result.surface = six_split(V, mesh.faces, N, edges, options.tension, options.max_move);
+    case SplitScheme::six_split: result.surface = six_split(V, F, N, edges, options.tension, options.max_move);
       break;
-    case SplitScheme::three_split: result.surface = three_split(V, mesh.faces, N, edges, three_split_options); break;
+    case SplitScheme::three_split: result.surface = three_split(V, F, N, edges, three_split_options); break;
     case SplitScheme::adaptive_two_split: {
-      const std::vector<TwoSplitPair> pairs = two_split_pairs(V, mesh.faces, edges, options.min_angle);
+      const std::vector<TwoSplitPair> pairs = two_split_pairs(V, F, edges, options.min_angle);
       TwoSplitCounts counts;
-      result.surface = two_split(V, mesh.faces, N, edges, pairs, three_split_options, &counts);
+      result.surface = two_split(V, F, N, edges, pairs, three_split_options, &counts);
       result.two_split_candidates = 2 * pairs.size();
       result.two_split_pairs = counts.pairs;
       result.adjacent_two_split_pairs = counts.adjacent_pairs;
@@ -169,7 +181,7 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   result.patches_seconds = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  result.oscillation = oscillation(result.surface, V, mesh.faces);  // relative to edge lengths: the same in either frame
+  result.oscillation = oscillation(result.surface, V, F);  // relative to edge lengths: the same in either frame
   shift_back(result.surface, frame);
   result.g1 = verify_g1(result.surface);
   scale_back(result.surface, frame);
@@ -199,6 +211,13 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
                         {"mean_relative", s.oscillation.mean_relative},
                         {"max_distance", s.oscillation.max_distance}}}};
   if (std::isfinite(options.max_move)) report["max_move"] = options.max_move;
+  if (options.flip_turned_faces) {
+    // Each changed face with its corners after the flips: the macro
+    // triangles of patches.json that differ from the mesh's own.
+    nlohmann::json flipped = nlohmann::json::array();
+    for (const int f : s.flipped_faces) flipped.push_back({f, s.faces(f, 0), s.faces(f, 1), s.faces(f, 2)});
+    report["flipped_faces"] = std::move(flipped);
+  }
   if (!options.given_normals && options.fitted_neighbours > 0) {
     report["normals"] = "fitted";
     report["fitted_neighbours"] = options.fitted_neighbours;

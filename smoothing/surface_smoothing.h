@@ -44,9 +44,14 @@ struct SurfaceSmoothingOptions {
   bool least_squares_ratio = true;
   double min_angle = 20.0;
   double max_move = std::numeric_limits<double>::infinity();
+  /// flip the edges of faces turned against their corners' normals first
+  /// (turned_face_flips.h; the station flow's choice): the surface is then
+  /// built on `SurfaceSmoothing::faces`, the same vertices otherwise joined
+  bool flip_turned_faces = false;
 };
 
 /// surface             the cubic patches
+/// faces, flipped_faces  see flip_turned_faces in the options
 /// adjusted_vertices   normals changed so that the sign condition holds (§9.6)
 /// sign_condition_violations  vertices where it still fails (not G¹ there)
 /// two_split_candidates  macro triangles below min_angle (adaptive two-split)
@@ -56,6 +61,10 @@ struct SurfaceSmoothingOptions {
 /// g1, oscillation      the verification (Eq. 8.7) and the oscillation measure
 struct SurfaceSmoothing {
   BezierSurface surface;
+  /// the macro triangles the patches are built on (surface.macro indexes
+  /// them): the mesh's faces, with flipped_faces changed by the flips
+  Eigen::MatrixX3i faces;
+  std::vector<int> flipped_faces;
   std::vector<int> adjusted_vertices;
   std::size_t isolated_vertices = 0;  ///< vertices in no triangle: not on the surface, left out
   std::size_t sign_condition_violations = 0;

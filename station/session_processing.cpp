@@ -128,6 +128,9 @@ SurfaceSmoothingOptions station_smoothing() {
   // own faces lean far off the surface where a scan is sparse (docs/design.md,
   // "Fitted normals").
   options.fitted_neighbours = 16;
+  // Slivers between two profiles that face against their corners' normals
+  // fold the surface wherever they are (docs/design.md, "Turned faces").
+  options.flip_turned_faces = true;
   return options;
 }
 

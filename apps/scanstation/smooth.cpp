@@ -70,6 +70,10 @@ class SmoothCommand final : public Command {
                      "G¹ exactly would move a control point farther than this many macro edge lengths (a bulge); "
                      "default: always exact, as the thesis")
         ->check(finite_range(1e-9, 1e9));
+    cli_->add_flag("--flip-turned-faces", flip_turned_faces_,
+                   "First flip the edges of faces turned against their corners' normals (slivers of a scanned "
+                   "boundary, where the sign condition cannot hold); the report lists the faces changed. The station "
+                   "flow's choice; default: the mesh's own triangles, as the thesis");
     add_density_option(*cli_, density_);
     cli_->add_option("--patches", patches_, "Also write the Bézier control nets as JSON");
     cli_->add_option("--zebra", zebra_, "Also write a reflection-line (zebra) PNG: smooth surface left, mesh right");
@@ -185,6 +189,9 @@ class SmoothCommand final : public Command {
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
     print_tessellation(result["tessellation"]);
+    if (!smoothed.flipped_faces.empty())
+      std::printf("%zu face(s) turned against their corners' normals changed by edge flips first\n",
+                  smoothed.flipped_faces.size());
     if (smoothed.isolated_vertices > 0)
       std::printf("%zu vertex(es) in no triangle left out (not on the surface)\n", smoothed.isolated_vertices);
     if (options.scheme == SplitScheme::adaptive_two_split)
@@ -222,6 +229,7 @@ class SmoothCommand final : public Command {
     options.least_squares_ratio = ratio_ == "least-squares";
     options.min_angle = min_angle_;
     if (max_move_) options.max_move = *max_move_;
+    options.flip_turned_faces = flip_turned_faces_;
     if (normals_ == "given") {
       if (!mesh.vertices.has_normals()) throw InvalidInput("--normals given: " + input_.string() + " has no normals");
       options.given_normals = mesh.vertices.normals;
@@ -244,6 +252,7 @@ class SmoothCommand final : public Command {
   double tension_ = 1.0 / 3.0;
   double min_angle_ = 20.0;
   std::optional<double> max_move_;
+  bool flip_turned_faces_ = false;
   std::optional<int> density_;  // none: automatic
   std::optional<std::filesystem::path> patches_, zebra_;
 };
