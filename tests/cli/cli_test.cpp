@@ -5,6 +5,7 @@
 
 #include "core/io/mesh_io.h"
 #include "core/mesh_topology.h"
+#include "sim/shapes.h"
 
 #include <nlohmann/json.hpp>
 
@@ -658,6 +659,35 @@ TEST(Cli, SmoothSaysWhereTheSurfaceFolds) {
                        std::to_string(result["g1"]["folded_edges"].get<int>()) + " patch edge(s)"),
             std::string::npos)
       << r.out;
+}
+
+// An icosphere with one vertex moved just across the opposite edge of one
+// of its faces: a sliver facing inwards, as scans leave between profiles.
+// --flip-turned-faces flips it away and lists the faces it changed.
+TEST(Cli, SmoothFlipsTurnedFacesOnRequest) {
+  ScratchFolder dir;
+  TriangleMesh mesh = sim::icosphere(2);
+  const int c = mesh.faces(0, 0), a = mesh.faces(0, 1), b = mesh.faces(0, 2);
+  const Eigen::RowVector3d middle = (mesh.vertices.positions.row(a) + mesh.vertices.positions.row(b)) / 2.0;
+  mesh.vertices.positions.row(c) = middle + 0.02 * (middle - mesh.vertices.positions.row(c));
+  io::write_mesh(dir / "sliver.off", mesh);
+  const auto smooth = [&](const std::string& options, const std::string& name) {
+    Outcome r = scanstation("smooth " + path(dir / "sliver.off") + " -o " + path(dir / (name + ".ply")) +
+                            " --density 1 --report " + path(dir / (name + ".json")) + options);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return std::make_pair(r, nlohmann::json::parse(slurp(dir / (name + ".json")))["result"]);
+  };
+  const auto [plain_run, plain] = smooth("", "plain");
+  EXPECT_GT(plain["sign_condition_violations"].get<int>(), 0);
+  EXPECT_FALSE(plain.contains("flipped_faces"));
+  const auto [flip_run, flipped] = smooth(" --flip-turned-faces", "flipped");
+  EXPECT_EQ(flipped["sign_condition_violations"], 0);
+  EXPECT_EQ(flipped["g1"]["folded_edges"], 0);
+  ASSERT_EQ(flipped["flipped_faces"].size(), 2u);  // the sliver and its neighbour across the edge a–b
+  EXPECT_EQ(flipped["flipped_faces"][0][0], 0);
+  EXPECT_NE(flip_run.out.find("2 face(s) turned against their corners' normals changed by edge flips first"),
+            std::string::npos)
+      << flip_run.out;
 }
 
 TEST(Cli, SmoothsARealMeshAndAPolygon) {
