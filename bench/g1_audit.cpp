@@ -9,16 +9,17 @@
 // Each mesh is smoothed (by default with the six-split) as `scanstation smooth`
 // does (area-weighted normals, or with --fitted K the station flow's planes
 // fitted to K neighbours; --max-move and --flip-turned-faces as `smooth`),
-// then verified
-// at 7 and at S (default 4095) samples per patch edge. One row per mesh:
+// then verified at 7 and at S (default 4095) samples per patch edge. One
+// row per mesh:
 // macro edges joined approximately (dependent), vertices where the sign
-// condition fails, the largest oscillation (in macro edge lengths), and the largest normal angle overall and where the scheme
-// claims an exact join, at both densities. A dense "exact" angle at π where
-// the sparse one is at rounding level is a fold the report does not see.
-// "folds": the shared patch edges the report's exact test finds folded.
+// condition fails, the largest oscillation (in macro edge lengths), and the
+// largest normal angle overall and where the scheme claims an exact join, at
+// both densities. A dense "exact" angle at π where the sparse one is at
+// rounding level is a fold the report does not see.
 // "turned": macro triangles with a patch whose normal, on a grid of 45
 // points, turns more than 90° from the mean of the corners' normals — the
 // surface folds over inside it (dark specks in a shaded picture).
+// "folds": the shared patch edges the report's exact test finds folded.
 #include "bench/guarded_main.h"
 #include "core/io/mesh_io.h"
 #include "smoothing/bezier_triangle.h"
@@ -105,12 +106,12 @@ int run(int argc, char** argv) {
     const TriangleMesh mesh = io::read_mesh(file);
     const SurfaceSmoothing smoothing = smooth_surface(mesh, options);
     const G1Verification dense = verify_g1(smoothing.surface, samples);
+    const std::size_t turned = turned_triangles(smoothing.surface, mesh.vertices.positions, smoothing.faces);
     std::printf("%-28s %9lld %6zu %5zu %7.3f %6zu %6zu %10.3g %10.3g %10.3g %10.3g\n",
                 std::filesystem::path(file).filename().string().c_str(), static_cast<long long>(mesh.faces.rows()),
                 smoothing.surface.dependent_edges.size(), smoothing.sign_condition_violations,
-                smoothing.oscillation.max_relative, turned_triangles(smoothing.surface, mesh.vertices.positions, smoothing.faces),
-                smoothing.g1.folded_edges,                smoothing.g1.max_normal_angle, smoothing.g1.max_normal_angle_exact, dense.max_normal_angle,
-                dense.max_normal_angle_exact);
+                smoothing.oscillation.max_relative, turned, smoothing.g1.folded_edges, smoothing.g1.max_normal_angle,
+                smoothing.g1.max_normal_angle_exact, dense.max_normal_angle, dense.max_normal_angle_exact);
   }
   return 0;
 }

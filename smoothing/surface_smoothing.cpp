@@ -144,7 +144,8 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
       const std::vector<int> flipped = flip_turned_faces(V, result.faces, N);
       if (flipped.empty()) break;
       std::vector<int> merged;
-      std::set_union(result.flipped_faces.begin(), result.flipped_faces.end(), flipped.begin(), flipped.end(), std::back_inserter(merged));
+      std::set_union(result.flipped_faces.begin(), result.flipped_faces.end(), flipped.begin(), flipped.end(),
+                     std::back_inserter(merged));
       result.flipped_faces = std::move(merged);
       edges = mesh_edges(F);
       N = normals(F);

@@ -62,7 +62,8 @@ std::vector<int> flip_turned_faces(const Eigen::MatrixX3d& V, Eigen::MatrixX3i& 
         const int across = edges.find(b, a);
         if (across < 0) continue;
         const int g = across / 3, d = F(g, across % 3);
-        if (flipped_now[static_cast<std::size_t>(g)] || d == c || edges.find(c, d) >= 0 || edges.find(d, c) >= 0) continue;
+        if (flipped_now[static_cast<std::size_t>(g)] || d == c) continue;
+        if (edges.find(c, d) >= 0 || edges.find(d, c) >= 0) continue;  // the new edge would be there twice
         // The quad a → d → b → c split along c–d: (a, d, c) and (d, b, c).
         if (!faces_its_corners(V, N, a, d, c) || !faces_its_corners(V, N, d, b, c)) continue;
         edges.remove_face(F, f);

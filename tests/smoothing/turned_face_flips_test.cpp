@@ -17,7 +17,8 @@
 namespace scanstation {
 namespace {
 
-bool faces_its_corners(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d& N, const Eigen::MatrixX3i& F, Eigen::Index f) {
+bool faces_its_corners(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d& N, const Eigen::MatrixX3i& F,
+                       Eigen::Index f) {
   const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
   const Eigen::Vector3d n = (b - a).cross(c - a);
   for (int k = 0; k < 3; ++k)
