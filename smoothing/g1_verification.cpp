@@ -41,11 +41,6 @@ struct EdgeDerivatives {
   }
 };
 
-inline Eigen::Vector3d quadratic(const Eigen::Vector3d* b, double s) {
-  const double t = 1.0 - s;
-  return (t * t) * b[0] + (2.0 * s * t) * b[1] + (s * s) * b[2];
-}
-
 }  // namespace
 
 G1Verification verify_g1(const BezierSurface& surface, int samples_per_edge) {

@@ -14,6 +14,12 @@ namespace scanstation {
 /// A quartic vector polynomial on [0, 1] by its Bernstein coefficients.
 using Quartic = std::array<Eigen::Vector3d, 5>;
 
+/// The quadratic with Bernstein coefficients b[0..2] at s.
+inline Eigen::Vector3d quadratic(const Eigen::Vector3d* b, double s) {
+  const double t = 1.0 - s;
+  return (t * t) * b[0] + (2.0 * s * t) * b[1] + (s * s) * b[2];
+}
+
 /// a(s) × b(s) for two quadratics given by their Bernstein coefficients.
 Quartic cross_product(const Eigen::Vector3d* a, const Eigen::Vector3d* b);
 

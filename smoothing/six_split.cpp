@@ -266,9 +266,6 @@ bool folds(const Point* M, const Point* L, const Point* R) {
   const Point there[3] = {M[0] - R[0], M[1] - R[1], M[2] - R[2]};  // turned, so that apart is ≤ 0
   const Quartic n_here = cross_product(along, here), n_there = cross_product(along, there);
   if (n_here[0].dot(n_there[0]) > 0.0) return reaches_zero(n_here, n_there);
-  const auto quadratic = [](const Point* b, double t) -> Point {
-    return (1 - t) * (1 - t) * b[0] + 2 * t * (1 - t) * b[1] + t * t * b[2];
-  };
   for (const double t : {0.25, 0.5, 0.75, 1.0}) {
     const Point a = quadratic(along, t);
     if (a.cross(quadratic(here, t)).dot(a.cross(quadratic(there, t))) <= 0.0) return true;
