@@ -8,6 +8,7 @@
 #include "core/io/station_geometry_json.h"
 #include "core/log.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -32,6 +33,16 @@ constexpr const char* kFormat = "scanstation-session";
 constexpr int kFormatVersion = 1;
 
 json vector_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+// The rotation only when the object was turned (rows of the matrix), so a
+// session of an upright object reads as before.
+json placement_json(const ObjectPlacement& p) {
+  json out = {{"scale", p.scale}, {"translation", vector_json(p.translation)}};
+  if (!p.rotation.isIdentity(0.0))
+    out["rotation"] = json::array({vector_json(p.rotation.row(0).transpose()), vector_json(p.rotation.row(1).transpose()),
+                                   vector_json(p.rotation.row(2).transpose())});
+  return out;
+}
 
 double seconds_of(drivers::Timestamp t) { return drivers::to_seconds(t); }
 
@@ -170,6 +181,19 @@ void read_object(const json& manifest, const std::string& where, SessionContents
       !std::all_of(translation->begin(), translation->end(), [](const json& v) { return v.is_number(); }))
     throw InvalidInput(where + ": object.placement.translation: expected an array of 3 numbers");
   for (int k = 0; k < 3; ++k) o.placement.translation[k] = (*translation)[static_cast<std::size_t>(k)];
+  const json* rotation = find(*placement, "rotation");
+  if (!rotation) return;
+  const auto is_row = [](const json& r) {
+    return r.is_array() && r.size() == 3 && std::all_of(r.begin(), r.end(), [](const json& v) { return v.is_number(); });
+  };
+  if (!rotation->is_array() || rotation->size() != 3 || !std::all_of(rotation->begin(), rotation->end(), is_row))
+    throw InvalidInput(where + ": object.placement.rotation: expected 3 rows of 3 numbers");
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      o.placement.rotation(i, k) = (*rotation)[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
+  const Eigen::Matrix3d& R = o.placement.rotation;
+  if (!(R * R.transpose()).isIdentity(1e-9) || !(std::abs(R.determinant() - 1.0) < 1e-9))
+    throw InvalidInput(where + ": object.placement.rotation: expected a rotation (orthonormal rows, determinant 1)");
 }
 
 void read_manifest(const fs::path& folder, SessionContents& contents) {
@@ -358,8 +382,7 @@ json to_json(const SessionManifest& m) {
           {"object",
            {{"name", m.object.name},
             {"mesh_file", m.object.mesh_file},
-            {"placement",
-             {{"scale", m.object.placement.scale}, {"translation", vector_json(m.object.placement.translation)}}}}}};
+            {"placement", placement_json(m.object.placement)}}}};
 }
 
 json station_json(const drivers::StationDescription& d) {
@@ -504,8 +527,15 @@ void SessionRecorder::record(const CapturedStep& step) {
 }
 
 Eigen::MatrixX3d own_coordinates(const Eigen::MatrixX3d& platter, const ObjectPlacement& placement) {
-  if (placement.scale == 1.0 && placement.translation.isZero()) return platter;
-  return (platter.rowwise() - placement.translation.transpose()) / placement.scale;
+  const bool turned = !placement.rotation.isIdentity(0.0);
+  if (placement.scale == 1.0 && placement.translation.isZero() && !turned) return platter;
+  Eigen::MatrixX3d own = (platter.rowwise() - placement.translation.transpose()) / placement.scale;
+  if (turned) own = (own * placement.rotation).eval();  // row by row: rotationᵀ · p
+  return own;
+}
+
+Eigen::Vector3d own_coordinates(const Eigen::Vector3d& platter, const ObjectPlacement& placement) {
+  return placement.rotation.transpose() * (platter - placement.translation) / placement.scale;
 }
 
 }  // namespace scanstation::acquisition

@@ -36,16 +36,19 @@
 namespace scanstation::acquisition {
 
 /// Where the object's own coordinates (those of its mesh file) sit on the
-/// platter: p_platter = scale · p_file + translation. Identity for a real
-/// object; the simulator places and scales a mesh file to fit the rig.
+/// platter: p_platter = scale · rotation · p_file + translation. Identity for
+/// a real object; the simulator stands a mesh file on the platter (rotation:
+/// which of its axes points up) and scales it to fit the rig.
 struct ObjectPlacement {
   double scale = 1.0;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
 };
 
 /// Points of the platter's object frame (#P by 3) in the object's own
-/// coordinates: (p − translation) / scale.
+/// coordinates: rotationᵀ (p − translation) / scale.
 Eigen::MatrixX3d own_coordinates(const Eigen::MatrixX3d& platter, const ObjectPlacement& placement);
+Eigen::Vector3d own_coordinates(const Eigen::Vector3d& platter, const ObjectPlacement& placement);
 
 struct SessionObject {
   std::string name;       // built-in name, mesh file name, or what the operator typed

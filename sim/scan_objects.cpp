@@ -42,11 +42,30 @@ const std::vector<std::string>& builtin_scan_objects() {
   return names;
 }
 
-ScanObject scan_object(const std::string& name_or_file, double max_radius, double max_height) {
+Eigen::Matrix3d up_axis_rotation(const std::string& up) {
+  const std::string axis = !up.empty() && (up[0] == '+' || up[0] == '-') ? up.substr(1) : up;
+  const double sign = !up.empty() && up[0] == '-' ? -1.0 : 1.0;
+  Eigen::Matrix3d R;
+  if (axis == "z") {  // a half turn about x for −z
+    R = Eigen::Vector3d(1.0, sign, sign).asDiagonal();
+  } else if (axis == "y") {  // a quarter turn about x: ±y → +z
+    R << 1, 0, 0, 0, 0, -sign, 0, sign, 0;
+  } else if (axis == "x") {  // a quarter turn about y: ±x → +z
+    R << 0, 0, -sign, 0, 1, 0, sign, 0, 0;
+  } else {
+    throw InvalidInput("--up '" + up + "': expected x, y, z, -x, -y or -z (the mesh file's axis that points up)");
+  }
+  return R;
+}
+
+ScanObject scan_object(const std::string& name_or_file, const Eigen::Matrix3d& rotation, double max_radius,
+                       double max_height) {
   ScanObject object;
   object.name = name_or_file;
   const auto& names = builtin_scan_objects();
   if (std::find(names.begin(), names.end(), name_or_file) != names.end()) {
+    if (!rotation.isIdentity(0.0))
+      throw InvalidInput("--up: '" + name_or_file + "' is a built-in object, which stands as designed; --up turns a mesh file");
     object.on_platter = builtin(name_or_file);
     return object;
   }
@@ -58,7 +77,8 @@ ScanObject scan_object(const std::string& name_or_file, double max_radius, doubl
   object.mesh_file = name_or_file;
   TriangleMesh mesh = io::read_mesh(name_or_file);
   if (mesh.face_count() == 0) throw InvalidInput(name_or_file + ": a mesh with faces is needed to simulate a scan");
-  const Eigen::MatrixX3d& P = mesh.vertices.positions;
+  object.rotation = rotation;
+  const Eigen::MatrixX3d P = mesh.vertices.positions * rotation.transpose();  // row by row: rotation · p
   const Eigen::RowVector3d low = P.colwise().minCoeff(), high = P.colwise().maxCoeff();
   const Eigen::RowVector2d axis = 0.5 * (low + high).head<2>();
   const double radius = (P.leftCols<2>().rowwise() - axis).rowwise().norm().maxCoeff();

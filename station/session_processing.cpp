@@ -64,7 +64,7 @@ struct StepViews {
     std::vector<Eigen::Vector3d> fed_views;  // own_coordinates of each fed point's camera centre
     for (std::size_t step = 0; step < centres.size(); ++step)
       fed_views.insert(fed_views.end(), static_cast<std::size_t>(counts[step]),
-                       (centres[step] - placement.translation) / placement.scale);
+                       acquisition::own_coordinates(centres[step], placement));
     const Eigen::Index fed = static_cast<Eigen::Index>(fed_views.size());
     const Eigen::Index final_points = result.points.cloud.size();
     const bool all_fed = result.fed_index.empty();
@@ -196,6 +196,13 @@ json process_session(const acquisition::SessionContents& session, const fs::path
   json& boundary_report = report["boundary"];
   if (!boundary.error.empty()) {
     boundary_report = {{"error", boundary.error}};
+    // A flat mesh file lying on the platter shows the camera an edge only
+    // (CGAL's blade.off: 1 point in 24 steps standing on z, 2497 on y).
+    if (!session.manifest.object.mesh_file.empty() && result.points.cloud.size() > 0)
+      report["warnings"].push_back(session.manifest.object.mesh_file + ": the camera saw " +
+                                   std::to_string(result.points.cloud.size()) +
+                                   " point(s) of the object standing this way; --up stands another of its axes up "
+                                   "(x, y, z, -x, -y, -z)");
   } else {
     const TriangleMesh mesh = boundary_mesh(boundary, result);
     const BoundaryStatistics& st = boundary.surface.statistics;
@@ -239,9 +246,13 @@ json process_session(const acquisition::SessionContents& session, const fs::path
       coarse = tessellate(smooth->surface, mesh.face_count() > 20000 ? 1 : 2);
     }
     if (options.preview_px > 0) {
+      // Upright as it stood on the turntable (a mesh file stood on its own y
+      // axis with `--up y`).
+      const Eigen::Vector3d up_in_own_coordinates =
+          session.manifest.object.placement.rotation.transpose() * Eigen::Vector3d::UnitZ();
       io::write_file_atomically(preview_path,
                                 shaded_preview_png(mesh, coarse ? *coarse : TriangleMesh{},
-                                                   {options.preview_px, Eigen::Vector3d::UnitZ()}),
+                                                   {options.preview_px, up_in_own_coordinates}),
                                 options.overwrite);
       outputs["preview"] = preview_path.string();
     }

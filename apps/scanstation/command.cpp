@@ -85,6 +85,15 @@ CLI::Validator decimal_digits() {
       "");
 }
 
+CLI::Option* add_up_option(CLI::App& app, std::string& up) {
+  return app
+      .add_option("--up", up,
+                  "Which axis of the --object mesh file points up the turntable axis: z (its own z), y, x, or -x, "
+                  "-y, -z (many meshes, CGAL's among them, stand on y)")
+      ->check(CLI::IsMember({"x", "y", "z", "+x", "+y", "+z", "-x", "-y", "-z"}))
+      ->capture_default_str();
+}
+
 void add_density_option(CLI::App& app, std::optional<int>& density) {
   app.add_option_function<std::string>(
          "--density",

@@ -91,6 +91,10 @@ CLI::Validator finite_range(double low, double high);
 /// (smoothing/tessellation_density.h).
 void add_density_option(CLI::App& app, std::optional<int>& density);
 
+/// --up AXIS (scan, demo, stereo --backend sim): which of a simulated mesh
+/// file's axes points up the turntable axis (sim::up_axis_rotation).
+CLI::Option* add_up_option(CLI::App& app, std::string& up);
+
 /// One line on the tessellation chosen (smoothing/tessellation_density.h
 /// describe()).
 void print_tessellation(const nlohmann::json& tessellation);

@@ -24,6 +24,7 @@ class DemoCommand final : public Command {
     cli_->add_option("--object", job_.object,
                      "Simulated object: sphere, ellipsoid, torus, chalice, candlestick or a mesh file")
         ->capture_default_str();
+    add_up_option(*cli_, job_.up);
     cli_->add_option("--steps", job_.steps, "Turntable steps per turn")->check(CLI::Range(2, 100000))->capture_default_str();
     cli_->add_option("--seed", job_.seed, "Seed of the simulated sensor noise")
         ->check(non_negative_integer())
@@ -40,7 +41,7 @@ class DemoCommand final : public Command {
   void run(CommandContext& context) override {
     io::check_writable(job_.folder / "object.ply", context.overwrite);
     job_.station = drivers::StationDescription{};  // the built-in simulated station
-    const sim::ScanObject object = sim::scan_object(job_.object);
+    const sim::ScanObject object = sim::scan_object(job_.object, sim::up_axis_rotation(job_.up));
     run_scan_job(context, job_);
     // A built-in object's true surface beside the results, to compare by eye
     // (a mesh file is its own truth).

@@ -28,6 +28,7 @@ class ScanCommand final : public Command {
                      "Simulated object: sphere, ellipsoid, torus, chalice, candlestick or a mesh file (placed and "
                      "scaled to fit the rig; the results come out in the file's own coordinates)")
         ->capture_default_str();
+    add_up_option(*cli_, job_.up);
     cli_->add_option("--steps", job_.steps, "Turntable steps per turn")->check(CLI::Range(1, 100000))->capture_default_str();
     cli_->add_flag("--resume", job_.resume, "Continue the interrupted session in -o after its last recorded step");
     cli_->add_option("--stop-after", job_.stop_after, "Record at most this many steps now (the session stays resumable)")
@@ -72,6 +73,7 @@ class ScanCommand final : public Command {
                                                                     : station_.description();
     job_.steps_given = cli_->count("--steps") > 0;
     job_.object_given = cli_->count("--object") > 0;
+    job_.up_given = cli_->count("--up") > 0;
     job_.parameters = parameters_.apply({});
     job_.stereo_parameters = stereo_.apply(acquisition::stereo_scan_defaults());
     run_scan_job(context, job_);

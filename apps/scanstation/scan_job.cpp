@@ -28,6 +28,9 @@ SessionRecorder resume_session(CommandContext& context, const ScanJob& job) {
     throw InvalidInput("--rig " + job.rig + ": the session was recorded with the " + m.rig + " rig");
   if (job.object_given && job.object != m.object.name)
     throw InvalidInput("--object " + job.object + ": the session scans '" + m.object.name + "'");
+  if (job.up_given && !sim::up_axis_rotation(job.up).isApprox(m.object.placement.rotation))
+    throw InvalidInput("--up " + job.up + ": the session's object stands another way (its manifest's "
+                       "object.placement.rotation)");
   // Other devices (a second laser, another camera format) would record steps
   // the manifest does not describe: laser1 frames in a one-laser session.
   const nlohmann::json* recorded = m.station.contains("fingerprint") ? &m.station["fingerprint"] : nullptr;
@@ -52,16 +55,16 @@ struct SimulatedRig {
 };
 
 SimulatedRig simulated_rig(CommandContext& context, const ScanJob& job, const std::string& rig_name,
-                           const std::string& object, std::uint64_t seed) {
+                           const std::string& object, const Eigen::Matrix3d& rotation, std::uint64_t seed) {
   SimulatedRig rig;
   const drivers::StationDescription& d = job.station;
   if (rig_name == "stereo") {
-    rig.stereo.emplace(sim::simulated_stereo(sim::scan_object(object), d, seed));
+    rig.stereo.emplace(sim::simulated_stereo(sim::scan_object(object, rotation), d, seed));
     if (!d.projector)
       context.log->warn("{}: no [projector]: passive stereo, texture-less surfaces give few points",
                         d.source.empty() ? d.name : d.source.string());
   } else {
-    rig.laser.emplace(sim::simulated_turntable(sim::scan_object(object), d, seed));
+    rig.laser.emplace(sim::simulated_turntable(sim::scan_object(object, rotation), d, seed));
   }
   return rig;
 }
@@ -86,7 +89,7 @@ SessionRecorder create_session(CommandContext& context, const ScanJob& job, cons
   manifest.stereo_parameters = job.stereo_parameters;
   if (rig) {
     const sim::ScanObject& object = rig->object();
-    manifest.object = {job.object, object.mesh_file, {object.scale, object.translation}};
+    manifest.object = {job.object, object.mesh_file, {object.scale, object.rotation, object.translation}};
   } else {
     manifest.object = {job.object_given ? job.object : "object", "", {}};
   }
@@ -261,10 +264,14 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
   // stands on the platter. A resumed scan simulates what the session
   // recorded, with its noise seed.
   std::optional<SimulatedRig> rig;
+  if (job.up_given && description.camera.backend != "sim")
+    throw InvalidInput("--up stands the simulated object on the platter; a real one stands as it was put there");
   if (description.camera.backend == "sim") {
     const std::string object = recorder ? recorded_object(recorder->manifest()) : job.object;
+    const Eigen::Matrix3d rotation =
+        recorder ? recorder->manifest().object.placement.rotation : sim::up_axis_rotation(job.up);
     const std::uint64_t seed = recorder ? recorder->manifest().station.value("sim_seed", job.seed) : job.seed;
-    rig = simulated_rig(context, job, recorder ? recorder->manifest().rig : job.rig, object, seed);
+    rig = simulated_rig(context, job, recorder ? recorder->manifest().rig : job.rig, object, rotation, seed);
   }
   if (!recorder) recorder.emplace(create_session(context, job, rig ? &*rig : nullptr));
   const acquisition::SessionManifest& manifest = recorder->manifest();

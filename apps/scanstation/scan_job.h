@@ -20,6 +20,7 @@ namespace scanstation::app {
 /// rig             "turntable" (camera and line lasers) or "stereo" (two
 ///                 cameras and a projector: the station needs [right_camera])
 /// object          simulated object: built-in name or mesh file
+/// up              which of the mesh file's axes points up (sim::up_axis_rotation)
 /// parameters      laser processing parameters (a resumed session keeps its own)
 /// stereo_parameters  the stereo rig's (likewise)
 /// snapshot_every  K > 0: the live boundary as PLY every K steps into folder/snapshots
@@ -28,9 +29,10 @@ struct ScanJob {
   std::string rig = "turntable";
   drivers::StationDescription station;
   std::string object = "sphere";
+  std::string up = "z";
   int steps = 36;
   bool resume = false;
-  bool rig_given = false, steps_given = false, object_given = false, parameters_given = false;
+  bool rig_given = false, steps_given = false, object_given = false, up_given = false, parameters_given = false;
   std::optional<int> stop_after;
   std::uint64_t seed = 1;
   std::filesystem::path folder;

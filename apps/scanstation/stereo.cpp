@@ -5,6 +5,7 @@
 // captures an object at N turntable angles; the views are reconstructed and
 // fused into one cloud in the object frame.
 #include "acquisition/scan_accuracy.h"
+#include "acquisition/session.h"
 #include "acquisition/stereo_matcher.h"
 #include "acquisition/stereo_reconstruction.h"
 #include "acquisition/view_fusion.h"
@@ -54,6 +55,7 @@ class StereoCommand final : public Command {
                      "Simulated object: a built-in name (sphere, ellipsoid, torus, chalice, candlestick) or a mesh file, "
                      "placed and scaled to fit the rig; the points are written in the file's own coordinates")
         ->capture_default_str();
+    add_up_option(*cli_, up_);
     cli_->add_option("--views", views_, "Turntable angles, evenly spaced over a turn")
         ->check(CLI::Range(1, 3600))
         ->capture_default_str();
@@ -131,6 +133,7 @@ class StereoCommand final : public Command {
       simulate(context);
       return;
     }
+    if (cli_->count("--up")) throw InvalidInput("--up stands the simulated object (--backend sim) on the platter");
     if (left_.empty() || right_.empty()) throw InvalidInput("stereo: give LEFT and RIGHT images, or --backend sim");
     if (output_.extension() != ".png") throw InvalidInput("-o " + output_.string() + ": expected a .png file name");
     options_.post_filter = post.at(post_);
@@ -184,7 +187,7 @@ class StereoCommand final : public Command {
   // the object frame, fuses them, writes the cloud.
   void simulate(CommandContext& context) {
     constexpr double platter_radius = 60.0;
-    const sim::ScanObject placed = sim::scan_object(object_);
+    const sim::ScanObject placed = sim::scan_object(object_, sim::up_axis_rotation(up_));
     const TriangleMesh& object = placed.on_platter;
     const Eigen::AlignedBox3d box = bounding_box(object.vertices.positions);
     const double height = box.max().z();
@@ -219,7 +222,7 @@ class StereoCommand final : public Command {
     fuse_timer.stop();
     StageTimer write_timer(context.report, "write");
     PointCloud own = fused.cloud;  // back into the mesh file's coordinates (identity for built-in objects)
-    own.positions = ((own.positions.rowwise() - placed.translation.transpose()) / placed.scale).eval();
+    own.positions = acquisition::own_coordinates(own.positions, {placed.scale, placed.rotation, placed.translation});
     io::write_points(output_, own, {std::nullopt, std::nullopt, context.overwrite});
     write_timer.stop();
 
@@ -245,6 +248,7 @@ class StereoCommand final : public Command {
   std::filesystem::path left_, right_, output_;
   std::optional<std::string> backend_;
   std::string object_ = "sphere";
+  std::string up_ = "z";
   int views_ = 8, width_ = 640, height_ = 480;
   bool projector_ = true;
   std::uint64_t seed_ = 1;

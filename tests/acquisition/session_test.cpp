@@ -53,7 +53,7 @@ struct SimStation {
     m.steps = steps;
     m.station = station_json(description);
     m.geometry = simulator_truth(simulated.rig.camera, sim::light_planes(simulated.rig));
-    m.object = {simulated.object.name, simulated.object.mesh_file, {simulated.object.scale, simulated.object.translation}};
+    m.object = {simulated.object.name, simulated.object.mesh_file, {simulated.object.scale, simulated.object.rotation, simulated.object.translation}};
     m.software_version = "test";
     return m;
   }
@@ -385,6 +385,38 @@ TEST_F(RecordedSphere, MissingManifestFieldsAreNamed) {
   test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json: file is empty"});
   fs::remove(damaged / "manifest.json");
   test::expect_error<InvalidInput>([&] { read_session(damaged); }, {"manifest.json: missing"});
+}
+
+TEST_F(RecordedSphere, TurnedPlacementRoundTripsAndABadOneIsNamed) {
+  test::ScratchFolder scratch;
+  const fs::path turned = copy(scratch);
+  // A file's y axis up (a quarter turn about x), as `scan --up y` records it.
+  const json rows = json::array({{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
+  edit_manifest(turned, [&](json& m) { m["object"]["placement"]["rotation"] = rows; });
+  const SessionContents read = read_session(turned);
+  Eigen::Matrix3d R;
+  R << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  EXPECT_TRUE(read.manifest.object.placement.rotation.isApprox(R));
+  // Own coordinates undo scale, turn and shift: p = s R q + t.
+  ObjectPlacement placement{2.0, R, Eigen::Vector3d(1, 2, 3)};
+  const Eigen::MatrixX3d own = Eigen::MatrixX3d::Random(5, 3);
+  const Eigen::MatrixX3d platter = ((2.0 * own * R.transpose()).rowwise() + Eigen::RowVector3d(1, 2, 3)).eval();
+  EXPECT_LT((own_coordinates(platter, placement) - own).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT((own_coordinates(Eigen::Vector3d(platter.row(2).transpose()), placement) - own.row(2).transpose())
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-15);
+  // Written back only when turned: an upright object's manifest reads as before.
+  SessionManifest turned_manifest = SimStation("sphere").manifest(kSteps);
+  EXPECT_FALSE(to_json(turned_manifest)["object"]["placement"].contains("rotation"));
+  turned_manifest.object.placement.rotation = R;
+  EXPECT_EQ(to_json(turned_manifest)["object"]["placement"]["rotation"], rows);
+
+  for (const json& bad : {json(rows[0]), json::array({{1, 0, 0}, {0, 1, 0}, {0, 0, -1}}),
+                          json::array({{1, 0, 0}, {0, 2, 0}, {0, 0, 0.5}}), json::array({{1, 0, 0}, {0, 1, 0}, {0, 0, "1"}})}) {
+    edit_manifest(turned, [&](json& m) { m["object"]["placement"]["rotation"] = bad; });
+    test::expect_error<InvalidInput>([&] { read_session(turned); }, {"manifest.json", "object.placement.rotation: expected"});
+  }
 }
 
 TEST_F(RecordedSphere, ResumedScanGivesTheSamePointsAsAnUninterruptedOne) {

@@ -343,6 +343,55 @@ TEST(ScanCli, MeshFileComesOutInItsOwnCoordinates) {
   EXPECT_GT(manifest["object"]["placement"]["scale"].get<double>(), 10.0);
 }
 
+TEST(ScanCli, MeshFileStandsOnTheAxisAskedForAndComesBackInItsOwnCoordinates) {
+  ScratchFolder dir;
+  // An ellipsoid lying along its file's y axis (radii 1, 4, 1.5 units),
+  // centred at (10, 20, 5), scanned standing on y: the points, the boundary
+  // and a replay must all come back in the file's coordinates.
+  const Eigen::RowVector3d radii(1.0, 4.0, 1.5), centre(10, 20, 5);
+  TriangleMesh cigar = sim::icosphere(6);
+  cigar.vertices.positions = ((cigar.vertices.positions.array().rowwise() * radii.array()).matrix().rowwise() + centre).eval();
+  io::write_mesh(dir / "cigar.off", cigar);
+  const fs::path station = write_station(dir);
+  const std::string scan = "scan --station " + station.string() + " --object " + (dir / "cigar.off").string() +
+                           " --steps 8 -o " + (dir / "s").string();
+  const Outcome r = scanstation(scan + " --up y");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // |(p − c) / radii| = 1 on the surface; off by the turn it would be far from it.
+  const auto off_surface = [&](const Eigen::MatrixX3d& P) {
+    return (((P.rowwise() - centre).array().rowwise() / radii.array()).matrix().rowwise().norm().array() - 1.0)
+        .abs()
+        .maxCoeff();
+  };
+  const Eigen::MatrixX3d P = io::read_points(dir / "s" / "points.ply").positions;
+  ASSERT_GT(P.rows(), 500);
+  EXPECT_LT(off_surface(P), 0.02);
+  EXPECT_LT(off_surface(io::read_mesh(dir / "s" / "mesh.ply").vertices.positions), 0.02);
+  const json manifest = json::parse(slurp(dir / "s" / "manifest.json"));
+  EXPECT_EQ(manifest["object"]["placement"]["rotation"], json::array({{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}));
+  // Standing, the cigar's 8 units are the height the rig allows (80 mm).
+  EXPECT_NEAR(manifest["object"]["placement"]["scale"].get<double>(), 10.0, 1e-9);
+  const json report = json::parse(slurp(dir / "s" / "report.json"));
+  EXPECT_LT(report["accuracy"]["points"]["rms_of_diagonal"].get<double>(), 1e-3);
+
+  const Outcome again = scanstation("replay " + (dir / "s").string() + " -o " + (dir / "r").string());
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(slurp(dir / "s" / "mesh.ply"), slurp(dir / "r" / "mesh.ply"));
+
+  // A resumed scan keeps the session's stance; a built-in object has its own.
+  const Outcome other = scanstation(scan + " --resume --up x");
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_THAT(other.err, testing::HasSubstr("--up x: the session's object stands another way"));
+  const Outcome builtin = scanstation("scan --station " + station.string() + " --object torus --up y --steps 2 -o " +
+                                      (dir / "t").string());
+  EXPECT_EQ(builtin.exit_code, 1);
+  EXPECT_THAT(builtin.err, testing::HasSubstr("'torus' is a built-in object"));
+  const Outcome unknown = scanstation("scan --station " + station.string() + " --object torus --up w -o " +
+                                      (dir / "u").string());
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_THAT(unknown.err, testing::HasSubstr("--up"));
+}
+
 TEST(ScanCli, UsbBoardStationScansToo) {
   ScratchFolder dir;
   std::ofstream(dir / "usb.toml") << "[camera]\nbackend = \"sim\"\nwidth = 320\nheight = 240\n"
