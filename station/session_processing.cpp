@@ -123,7 +123,12 @@ TriangleMesh boundary_mesh(const FinalBoundary& b, const acquisition::ScanResult
 
 SurfaceSmoothingOptions station_smoothing() {
   SurfaceSmoothingOptions options;
-  options.max_move = 1.0;
+  // Step 5 moves a control point at most a quarter of its macro edge's
+  // length; farther, the edge is joined approximately. One edge length let
+  // needles between two profiles grow fins (the candlestick's flange: 16 mm
+  // on a 78 mm object); a quarter halves the triangles whose surface turns
+  // over and keeps the accuracy (docs/design.md, "Station smoothing bound").
+  options.max_move = 0.25;
   // Normals fitted to the scanned points around each vertex: the boundary's
   // own faces lean far off the surface where a scan is sparse (docs/design.md,
   // "Fitted normals").

@@ -53,15 +53,17 @@ TEST_P(StationFlow, ClosedGenusZeroThroughAllPointsNearTheTruthAndReplayedByteFo
   EXPECT_LE(points, 1e-3);
   EXPECT_LE(to_truth, c.mesh_rms_of_diagonal);
   // The smooth surface does not bulge: Step 5 moves its control points at
-  // most one macro edge length on scanned boundaries (the surface's distance
-  // from the mesh, per local edge length, adds the patches' own curvature).
+  // most a quarter of a macro edge length on scanned boundaries (the
+  // surface's distance from the mesh, per local edge length, adds the
+  // patches' own curvature; measured 0.22–0.26 here, 0.6–1.1 with the one
+  // edge length the station allowed before).
   // Where the boundary itself folds (slits at waists) so does the surface.
   const json& smoothing = report["smoothing"];
   const double bulge = smoothing["oscillation"]["max_relative"];
   std::printf("%s: smooth surface: largest normal angle %.3g rad, oscillation %.3g, %d edges joined approximately\n",
               c.object, smoothing["g1"]["max_normal_angle"].get<double>(), bulge,
               smoothing["dependent_edges"].get<int>());
-  EXPECT_LE(bulge, 1.5);
+  EXPECT_LE(bulge, 0.5);
   // smooth.ply: a density per patch (automatic), one closed genus-0 surface
   // of the faces reported, within the tolerance but for a few bulges.
   const json& tessellation = smoothing["tessellation"];
