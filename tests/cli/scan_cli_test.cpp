@@ -378,10 +378,18 @@ TEST(ScanCli, MeshFileStandsOnTheAxisAskedForAndComesBackInItsOwnCoordinates) {
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(slurp(dir / "s" / "mesh.ply"), slurp(dir / "r" / "mesh.ply"));
 
-  // A resumed scan keeps the session's stance; a built-in object has its own.
+  // A resumed scan stands the object as its manifest says (no --up needed)
+  // and ends with the same boundary; another stance is refused.
+  const std::string part = "scan --station " + station.string() + " --object " + (dir / "cigar.off").string() +
+                           " --steps 8 -o " + (dir / "p").string();
+  ASSERT_EQ(scanstation(part + " --up y --stop-after 3").exit_code, 0);
+  const Outcome resumed = scanstation("scan --station " + station.string() + " --resume -o " + (dir / "p").string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(slurp(dir / "s" / "mesh.ply"), slurp(dir / "p" / "mesh.ply"));
   const Outcome other = scanstation(scan + " --resume --up x");
   EXPECT_EQ(other.exit_code, 1);
   EXPECT_THAT(other.err, testing::HasSubstr("--up x: the session's object stands another way"));
+  // A built-in object has its own stance.
   const Outcome builtin = scanstation("scan --station " + station.string() + " --object torus --up y --steps 2 -o " +
                                       (dir / "t").string());
   EXPECT_EQ(builtin.exit_code, 1);
