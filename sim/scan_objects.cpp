@@ -83,7 +83,13 @@ ScanObject scan_object(const std::string& name_or_file, const Eigen::Matrix3d& r
   const Eigen::RowVector2d axis = 0.5 * (low + high).head<2>();
   const double radius = (P.leftCols<2>().rowwise() - axis).rowwise().norm().maxCoeff();
   const double height = high.z() - low.z();
-  if (!(radius > 0) || !(height > 0)) throw InvalidInput(name_or_file + ": the mesh has no extent to scan");
+  if (!(radius > 0) && !(height > 0)) throw InvalidInput(name_or_file + ": the mesh has no extent to scan");
+  // Flat across or along the turntable axis: standing on another axis of
+  // the file gives it both (a flat triangle, a sheet).
+  if (!(height > 0) || !(radius > 0))
+    throw InvalidInput(name_or_file + ": the mesh, standing this way, is " +
+                       (height > 0 ? "a line along the turntable axis" : "flat on the platter") +
+                       ": no surface to scan; --up stands another of its axes up (x, y, z, -x, -y, -z)");
   object.scale = std::min(max_radius / radius, max_height / height);
   object.translation = -object.scale * Eigen::Vector3d(axis.x(), axis.y(), low.z());
   mesh.vertices.positions = ((P * object.scale).rowwise() + object.translation.transpose()).eval();

@@ -7,6 +7,7 @@
 
 #include <Eigen/LU>
 
+#include <fstream>
 #include <string>
 
 namespace scanstation::sim {
@@ -66,6 +67,21 @@ TEST(ScanObjects, AMeshFileStandsOnTheAxisAskedForAndMapsBack) {
     const Eigen::MatrixX3d own = ((Q.rowwise() - o.translation.transpose()) / o.scale) * o.rotation;
     EXPECT_LT((own - cigar.vertices.positions).cwiseAbs().maxCoeff(), 1e-12) << up;
   }
+}
+
+TEST(ScanObjects, AFlatMeshIsToldToStandOnAnotherAxis) {
+  test::ScratchFolder dir;
+  std::ofstream(dir / "sheet.off") << "OFF\n3 1 0\n1 1 0\n-1 1 0\n0 -1 0\n3 0 1 2\n";
+  const std::string sheet = (dir / "sheet.off").string();
+  try {
+    scan_object(sheet);
+    ADD_FAILURE() << "a flat sheet was placed";
+  } catch (const InvalidInput& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("sheet.off: the mesh, standing this way, is flat on the platter"));
+    EXPECT_THAT(e.what(), testing::HasSubstr("--up stands another of its axes up"));
+  }
+  const ScanObject standing = scan_object(sheet, up_axis_rotation("y"));
+  EXPECT_GT(standing.on_platter.vertices.positions.col(2).maxCoeff(), 0.0);
 }
 
 TEST(ScanObjects, BuiltInObjectsStandAsDesigned) {
