@@ -791,7 +791,7 @@ TEST(Cli, SmoothSaysWhereTheSurfaceBulges) {
   Outcome r = scanstation("smooth " + tetrahedron + " -o " + path(dir / "t.ply") + " --report " + path(dir / "t.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, testing::ContainsRegex("the surface strays up to [0-9.]+ \\([0-9]+% of the mesh's size\\)"));
-  EXPECT_THAT(r.err, testing::HasSubstr("--max-move 1 bounds"));
+  EXPECT_THAT(r.err, testing::HasSubstr("--max-move 0.25 bounds"));
   // A fixed density that would write billions of triangles is refused (a
   // refined elephant at 64 ran for hours).
   r = scanstation("smooth " + tetrahedron + " -o " + path(dir / "d.ply") + " --density 64");
@@ -802,7 +802,7 @@ TEST(Cli, SmoothSaysWhereTheSurfaceBulges) {
   EXPECT_THAT(r.err, testing::HasSubstr("--density 64 over 533568 patches would write 2.19e+09 triangles"));
   const auto oscillation = nlohmann::json::parse(slurp(dir / "t.json"))["result"]["oscillation"];
   EXPECT_GT(oscillation["max_distance"].get<double>(), 1.0);  // the unit corner's surface reaches past y = 4
-  r = scanstation("smooth " + tetrahedron + " -o " + path(dir / "b.ply") + " --max-move 1");
+  r = scanstation("smooth " + tetrahedron + " -o " + path(dir / "b.ply") + " --max-move 0.25");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, testing::Not(testing::HasSubstr("strays")));
   r = scanstation("smooth " + path(test::cgal_data("meshes/eight.off")) + " -o " + path(dir / "e.ply"));
