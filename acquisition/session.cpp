@@ -39,7 +39,8 @@ json vector_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v
 json placement_json(const ObjectPlacement& p) {
   json out = {{"scale", p.scale}, {"translation", vector_json(p.translation)}};
   if (!p.rotation.isIdentity(0.0))
-    out["rotation"] = json::array({vector_json(p.rotation.row(0).transpose()), vector_json(p.rotation.row(1).transpose()),
+    out["rotation"] = json::array({vector_json(p.rotation.row(0).transpose()),
+                                   vector_json(p.rotation.row(1).transpose()),
                                    vector_json(p.rotation.row(2).transpose())});
   return out;
 }

@@ -65,7 +65,8 @@ ScanObject scan_object(const std::string& name_or_file, const Eigen::Matrix3d& r
   const auto& names = builtin_scan_objects();
   if (std::find(names.begin(), names.end(), name_or_file) != names.end()) {
     if (!rotation.isIdentity(0.0))
-      throw InvalidInput("--up: '" + name_or_file + "' is a built-in object, which stands as designed; --up turns a mesh file");
+      throw InvalidInput("--up: '" + name_or_file +
+                         "' is a built-in object, which stands as designed; --up turns a mesh file");
     object.on_platter = builtin(name_or_file);
     return object;
   }

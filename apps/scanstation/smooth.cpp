@@ -210,7 +210,8 @@ class SmoothCommand final : public Command {
       context.log->warn("the surface strays up to {:.3g} ({:.0f}% of the mesh's size) from its triangles: a bulge at "
                         "nearly dependent G¹ equations{}",
                         stray, 100.0 * stray / size,
-                        max_move_ ? " or long macro edges" : "; --max-move 0.25 bounds the control points' moves (the station flow's choice)");
+                        max_move_ ? " or long macro edges"
+                                  : "; --max-move 0.25 bounds the control points' moves (the station flow's choice)");
     if (smoothed.sign_condition_violations > 0 || !surface.dependent_edges.empty())
       std::printf("not G¹ everywhere: %zu vertices violate the sign condition, %zu macro edges have dependent "
                   "equations (largest normal angle %.3g rad elsewhere)\n",

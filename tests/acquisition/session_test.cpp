@@ -53,7 +53,9 @@ struct SimStation {
     m.steps = steps;
     m.station = station_json(description);
     m.geometry = simulator_truth(simulated.rig.camera, sim::light_planes(simulated.rig));
-    m.object = {simulated.object.name, simulated.object.mesh_file, {simulated.object.scale, simulated.object.rotation, simulated.object.translation}};
+    m.object = {simulated.object.name,
+                simulated.object.mesh_file,
+                {simulated.object.scale, simulated.object.rotation, simulated.object.translation}};
     m.software_version = "test";
     return m;
   }
