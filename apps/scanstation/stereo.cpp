@@ -133,7 +133,13 @@ class StereoCommand final : public Command {
       simulate(context);
       return;
     }
-    if (cli_->count("--up")) throw InvalidInput("--up stands the simulated object (--backend sim) on the platter");
+    // Options of the simulated capture: a pair on disk would ignore them
+    // without a word.
+    for (const char* capture_only : {"--object", "--up", "--views", "--width", "--height", "--no-projector", "--seed",
+                                     "--voxel", "--min-views", "--outlier-radius"})
+      if (cli_->count(capture_only))
+        throw InvalidInput(std::string("stereo: ") + capture_only +
+                           " is for the simulated capture (--backend sim), not a pair of images on disk");
     if (left_.empty() || right_.empty()) throw InvalidInput("stereo: give LEFT and RIGHT images, or --backend sim");
     if (output_.extension() != ".png") throw InvalidInput("-o " + output_.string() + ": expected a .png file name");
     options_.post_filter = post.at(post_);

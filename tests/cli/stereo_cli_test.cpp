@@ -46,6 +46,12 @@ TEST(StereoCli, SimulatedCaptureWritesAFusedCloudAndItsReport) {
   r = scanstation("stereo --backend sim --object sphere" + small + " --disparities 32 -o " + path(dir / "d.ply"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--disparities is for a pair of images on disk"));
+  // And the capture's options were ignored on a pair without a word.
+  for (const std::string option : {"--object sphere", "--up y", "--views 4", "--no-projector", "--voxel 2"}) {
+    r = scanstation("stereo l.png r.png " + option + " -o " + path(dir / "x.png"));
+    EXPECT_EQ(r.exit_code, 1) << option;
+    EXPECT_THAT(r.err, testing::HasSubstr(option.substr(0, option.find(' ')) + " is for the simulated capture"));
+  }
   // Nothing fused is said (an empty cloud came with exit 0 and no word).
   r = scanstation("stereo --backend sim --object sphere --width 64 --height 48 --views 2 -o " + path(dir / "e.ply"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
