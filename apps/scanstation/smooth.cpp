@@ -103,13 +103,28 @@ class SmoothCommand final : public Command {
     }
     if (scheme_ == "curve")
       throw InvalidInput(input_.string() + ": a triangle mesh; --scheme curve smooths polygons");
+    // An option of another scheme, or of fitted normals, changed nothing
+    // without a word (--min-angle on the six-split).
+    refuse_unused({"--min-angle"}, scheme_ != "adaptive-two-split", "is for --scheme adaptive-two-split");
+    refuse_unused({"--ratio"}, scheme_ != "three-split", "is for --scheme three-split");
+    refuse_unused({"--neighbours"}, normals_ != "fitted", "is for --normals fitted");
     require_mesh_output(output_, "the smooth surface");
     smooth_surface(context, *input.mesh);
   }
 
  private:
+  // Throws when `unused` and one of `options` was given: "--ratio is for ...".
+  void refuse_unused(std::initializer_list<const char*> options, bool unused, const std::string& what) const {
+    if (!unused) return;
+    for (const char* option : options)
+      if (cli_->count(option)) throw InvalidInput(std::string(option) + " " + what);
+  }
+
   void smooth_curve(CommandContext& context, const Polygon2& polygon) {
     if (zebra_) throw InvalidInput("--zebra renders surfaces; --scheme curve makes a 2D curve");
+    refuse_unused({"--neighbours", "--ratio", "--tension", "--min-angle", "--max-move", "--flip-turned-faces",
+                   "--density"},
+                  true, "is for surfaces; --scheme curve makes a 2D curve (§9.2)");
     if (polygon.size() < 3)
       throw InvalidInput(input_.string() + ": expected a polygon of at least 3 vertices, found " +
                          std::to_string(polygon.size()));

@@ -780,6 +780,25 @@ TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
   r = scanstation("smooth " + eight + " -o " + path(dir / "s.ply") + " --tension nan");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, testing::HasSubstr("--tension: expected a number in [0.05, 0.95], got nan"));
+  // Options of another scheme, of fitted normals or of surfaces changed
+  // nothing without a word.
+  const std::vector<std::pair<std::string, std::string>> unused = {
+      {eight + " --min-angle 30", "--min-angle is for --scheme adaptive-two-split"},
+      {eight + " --scheme six-split --ratio one", "--ratio is for --scheme three-split"},
+      {eight + " --neighbours 8", "--neighbours is for --normals fitted"},
+      {path(dir / "poly.xy") + " --tension 0.4", "--tension is for surfaces"},
+      {path(dir / "poly.xy") + " --max-move 1", "--max-move is for surfaces"}};
+  std::ofstream(dir / "poly.xy") << "0 0\n1 0\n1 1\n0 1\n";
+  for (const auto& [arguments, message] : unused) {
+    r = scanstation("smooth " + arguments + " -o " + path(dir / (arguments.find("poly") != std::string::npos ? "p.svg" : "u.ply")));
+    EXPECT_EQ(r.exit_code, 1) << arguments;
+    EXPECT_THAT(r.err, testing::HasSubstr(message));
+  }
+  EXPECT_EQ(scanstation("smooth " + eight + " --normals fitted --neighbours 8 -o " + path(dir / "f.ply")).exit_code, 0);
+  EXPECT_EQ(scanstation("smooth " + path(dir / "poly.xy") + " -o " + path(dir / "p.svg")).exit_code, 0);
+  r = scanstation("reconstruct " + path(dir / "poly.xy") + " --carve-gaps on -o " + path(dir / "r.svg"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--carve-gaps is a 3D stage; the input has two coordinates"));
 }
 
 // A bulge is said, with the remedy: CGAL's corner tetrahedron came out five
