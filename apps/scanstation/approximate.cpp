@@ -59,6 +59,8 @@ class ApproximateCommand final : public Command {
     context.progress.finish();
     if (input.polygon) {
       if (balls_) throw InvalidInput("--balls is for 3D meshes; use --svg for a polygon");
+      if (cli_->count("--angle-threshold"))
+        throw InvalidInput("--angle-threshold splits the triangles of a 3D mesh (§7.3.2); a polygon has none");
       run_2d(context, input);
     } else {
       if (svg_) throw InvalidInput("--svg is for 2D polygons; use --balls for a mesh");

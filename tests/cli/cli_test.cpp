@@ -635,6 +635,10 @@ TEST(Cli, FlintstoneApproximateInsideIntersect) {
   EXPECT_THAT(r.err, testing::HasSubstr("2D points for a 3D boundary"));
   r = scanstation("intersect " + elephant + " " + path(dir / "p.xy"));
   EXPECT_EQ(r.exit_code, 1);
+  // A 3D option on a polygon changed nothing without a word.
+  r = scanstation("approximate " + path(dir / "p.xy") + " --level 2 --angle-threshold 1 -o " + path(dir / "t.xy"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, testing::HasSubstr("--angle-threshold splits the triangles of a 3D mesh"));
 }
 
 }  // namespace
