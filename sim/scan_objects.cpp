@@ -75,7 +75,8 @@ ScanObject scan_object(const std::string& name_or_file, const Eigen::Matrix3d& r
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
     throw InvalidInput("--object '" + name_or_file + "': neither a built-in object (" + known + ") nor a mesh file");
   }
-  object.mesh_file = name_or_file;
+  // Absolute, so that a replay from another folder still finds the truth.
+  object.mesh_file = std::filesystem::absolute(name_or_file).lexically_normal().string();
   TriangleMesh mesh = io::read_mesh(name_or_file);
   if (mesh.face_count() == 0) throw InvalidInput(name_or_file + ": a mesh with faces is needed to simulate a scan");
   object.rotation = rotation;

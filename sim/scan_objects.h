@@ -18,7 +18,7 @@ inline constexpr double kSimulatedRigHeight = 80.0;
 inline constexpr double kSimulatedObjectRadius = 40.0;
 
 /// name         built-in name or the mesh file's path
-/// mesh_file    "" for a built-in object
+/// mesh_file    the mesh file's absolute path; "" for a built-in object
 /// on_platter   the mesh as it stands on the platter (object frame, z ≥ 0)
 /// scale, rotation, translation  the placement: on_platter = scale ·
 ///              rotation · own + translation, where `own` are the mesh file's

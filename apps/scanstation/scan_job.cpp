@@ -210,6 +210,13 @@ station::SessionProcessing session_processing(CommandContext& context, const acq
   options.overwrite = io::Overwrite::replace;  // the command checked what it may replace
   options.density = density;
   options.truth = known_object_surface(manifest);
+  // A simulated session whose mesh file moved lost its accuracy section
+  // without a word (it was recorded relative to the folder scanned from).
+  if (!options.truth && !manifest.object.mesh_file.empty() &&
+      manifest.station.value("/camera/backend"_json_pointer, std::string()) == "sim")
+    context.log->warn("{}: the simulated object's mesh file is missing or has no faces: no accuracy against the "
+                      "true surface",
+                      manifest.object.mesh_file);
   options.live.camera_centre = manifest.geometry.camera.centre();  // lines of sight, as the replay's
   const int steps = manifest.steps;
   options.on_live_step = [&context, steps](const station::LiveStep& s) {

@@ -400,6 +400,31 @@ TEST(ScanCli, MeshFileStandsOnTheAxisAskedForAndComesBackInItsOwnCoordinates) {
   EXPECT_THAT(unknown.err, testing::HasSubstr("--up"));
 }
 
+TEST(ScanCli, AMeshFileNamedRelativelyIsFoundFromAnotherFolderAndAMissingOneIsSaid) {
+  ScratchFolder dir;
+  io::write_mesh(dir / "ball.off", sim::icosphere(4));
+  const fs::path station = write_station(dir);
+  // Scanned from the mesh's own folder, named without a folder.
+  const fs::path before = fs::current_path();
+  fs::current_path(dir.path());
+  const Outcome r = scanstation("scan --station " + station.string() + " --object ball.off --steps 4 -o " +
+                                (dir / "s").string());
+  fs::current_path(before);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(json::parse(slurp(dir / "s" / "manifest.json"))["object"]["mesh_file"],
+            fs::absolute(dir / "ball.off").lexically_normal().string());
+  // Replayed from elsewhere: the truth is still found.
+  Outcome again = scanstation("replay " + (dir / "s").string() + " -o " + (dir / "r").string());
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_TRUE(json::parse(slurp(dir / "r" / "report.json")).contains("accuracy"));
+  // Gone: the missing accuracy is said, not just left out.
+  fs::rename(dir / "ball.off", dir / "moved.off");
+  again = scanstation("replay " + (dir / "s").string() + " -o " + (dir / "m").string());
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_FALSE(json::parse(slurp(dir / "m" / "report.json")).contains("accuracy"));
+  EXPECT_THAT(again.err, testing::HasSubstr("ball.off: the simulated object's mesh file is missing"));
+}
+
 TEST(ScanCli, UsbBoardStationScansToo) {
   ScratchFolder dir;
   std::ofstream(dir / "usb.toml") << "[camera]\nbackend = \"sim\"\nwidth = 320\nheight = 240\n"
