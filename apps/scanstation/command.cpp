@@ -85,6 +85,12 @@ CLI::Validator decimal_digits() {
       "");
 }
 
+const char* first_given(const CLI::App& app, std::initializer_list<const char*> options) {
+  for (const char* option : options)
+    if (app.count(option) > 0) return option;
+  return nullptr;
+}
+
 CLI::Option* add_up_option(CLI::App& app, std::string& up) {
   return app
       .add_option("--up", up,

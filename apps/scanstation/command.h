@@ -91,6 +91,12 @@ CLI::Validator finite_range(double low, double high);
 /// (smoothing/tessellation_density.h).
 void add_density_option(CLI::App& app, std::optional<int>& density);
 
+/// The first of `options` given on `app`'s command line, or nullptr: for
+/// refusing options that would change nothing for the input at hand (a
+/// polygon, another scheme, a pair of images on disk) rather than ignoring
+/// them without a word.
+const char* first_given(const CLI::App& app, std::initializer_list<const char*> options);
+
 /// --up AXIS (scan, demo, stereo --backend sim): which of a simulated mesh
 /// file's axes points up the turntable axis (sim::up_axis_rotation).
 CLI::Option* add_up_option(CLI::App& app, std::string& up);

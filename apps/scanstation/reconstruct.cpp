@@ -202,9 +202,9 @@ class ReconstructCommand final : public Command {
       if (!viewpoint_.empty() || viewpoints_)
         throw InvalidInput("--viewpoint/--viewpoints carve lines of sight in 3D; the input has two coordinates");
       // 3D stages: given for a polygon they changed nothing without a word.
-      for (const char* option : {"--cell-flips", "--flips", "--unfold", "--carve-gaps", "--carve-webs", "--guide"})
-        if (cli_->count(option))
-          throw InvalidInput(std::string(option) + " is a 3D stage; the input has two coordinates");
+      if (const char* option =
+              first_given(*cli_, {"--cell-flips", "--flips", "--unfold", "--carve-gaps", "--carve-webs", "--guide"}))
+        throw InvalidInput(std::string(option) + " is a 3D stage; the input has two coordinates");
       if (svg_ && io::resolve_format(*svg_, std::nullopt) != io::FileFormat::svg)
         throw InvalidInput("--svg " + svg_->string() + ": expected a file name ending in .svg");
       const CurveReconstruction r = reconstruct_curve(cloud.positions.leftCols(2), options_);

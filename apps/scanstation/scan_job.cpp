@@ -191,8 +191,14 @@ std::string live_detail(const station::LiveStep& s, int steps) {
 
 }  // namespace
 
+namespace {
+bool simulated(const acquisition::SessionManifest& m) {
+  return m.station.value("/camera/backend"_json_pointer, std::string()) == "sim";
+}
+}  // namespace
+
 std::optional<TriangleMesh> known_object_surface(const acquisition::SessionManifest& m) {
-  if (m.station.value("/camera/backend"_json_pointer, std::string()) != "sim") return std::nullopt;
+  if (!simulated(m)) return std::nullopt;
   try {
     if (m.object.mesh_file.empty()) return sim::scan_object(m.object.name).on_platter;
     if (!std::filesystem::exists(m.object.mesh_file)) return std::nullopt;
@@ -212,8 +218,7 @@ station::SessionProcessing session_processing(CommandContext& context, const acq
   options.truth = known_object_surface(manifest);
   // A simulated session whose mesh file moved lost its accuracy section
   // without a word (it was recorded relative to the folder scanned from).
-  if (!options.truth && !manifest.object.mesh_file.empty() &&
-      manifest.station.value("/camera/backend"_json_pointer, std::string()) == "sim")
+  if (!options.truth && !manifest.object.mesh_file.empty() && simulated(manifest))
     context.log->warn("{}: the simulated object's mesh file is missing or has no faces: no accuracy against the "
                       "true surface",
                       manifest.object.mesh_file);

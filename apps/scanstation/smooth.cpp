@@ -115,9 +115,8 @@ class SmoothCommand final : public Command {
  private:
   // Throws when `unused` and one of `options` was given: "--ratio is for ...".
   void refuse_unused(std::initializer_list<const char*> options, bool unused, const std::string& what) const {
-    if (!unused) return;
-    for (const char* option : options)
-      if (cli_->count(option)) throw InvalidInput(std::string(option) + " " + what);
+    if (const char* option = unused ? first_given(*cli_, options) : nullptr)
+      throw InvalidInput(std::string(option) + " " + what);
   }
 
   void smooth_curve(CommandContext& context, const Polygon2& polygon) {

@@ -120,10 +120,10 @@ class StereoCommand final : public Command {
     if (backend_) {
       if (!left_.empty() || !right_.empty()) throw InvalidInput("stereo --backend sim captures its own images: drop LEFT RIGHT");
       // Options of a pair on disk: the capture took them without a word.
-      for (const char* pair_only : {"--truth", "--plain", "--encoding", "--disparities", "--min-disparity"})
-        if (cli_->count(pair_only))
-          throw InvalidInput(std::string("stereo --backend sim: ") + pair_only +
-                             " is for a pair of images on disk (the capture fits its disparity range to the platter)");
+      if (const char* pair_only =
+              first_given(*cli_, {"--truth", "--plain", "--encoding", "--disparities", "--min-disparity"}))
+        throw InvalidInput(std::string("stereo --backend sim: ") + pair_only +
+                           " is for a pair of images on disk (the capture fits its disparity range to the platter)");
       // Filled gaps would be invented geometry: only matched pixels, unless asked.
       options_.post_filter = cli_->count("--post") ? post.at(post_) : acquisition::DisparityPostFilter::none;
       if (!cli_->count("--median")) options_.median_size = 0;
@@ -135,11 +135,11 @@ class StereoCommand final : public Command {
     }
     // Options of the simulated capture: a pair on disk would ignore them
     // without a word.
-    for (const char* capture_only : {"--object", "--up", "--views", "--width", "--height", "--no-projector", "--seed",
-                                     "--voxel", "--min-views", "--outlier-radius"})
-      if (cli_->count(capture_only))
-        throw InvalidInput(std::string("stereo: ") + capture_only +
-                           " is for the simulated capture (--backend sim), not a pair of images on disk");
+    if (const char* capture_only = first_given(*cli_, {"--object", "--up", "--views", "--width", "--height",
+                                                       "--no-projector", "--seed", "--voxel", "--min-views",
+                                                       "--outlier-radius"}))
+      throw InvalidInput(std::string("stereo: ") + capture_only +
+                         " is for the simulated capture (--backend sim), not a pair of images on disk");
     if (left_.empty() || right_.empty()) throw InvalidInput("stereo: give LEFT and RIGHT images, or --backend sim");
     if (output_.extension() != ".png") throw InvalidInput("-o " + output_.string() + ": expected a .png file name");
     options_.post_filter = post.at(post_);
