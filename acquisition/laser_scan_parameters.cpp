@@ -47,6 +47,7 @@ json to_json(const LaserScanParameters& p) {
           {"minimum_incidence", t.minimum_incidence},
           {"outlier_radius", p.outlier_radius},
           {"outlier_neighbours", p.outlier_neighbours},
+          {"min_spacing", p.min_spacing},
           {"row_step", p.row_step}};
 }
 
@@ -98,6 +99,7 @@ LaserScanParameters laser_scan_parameters_from_json(const json& value, const std
   read_key(value, "outlier_radius", where, p.outlier_radius, finite_non_negative, "a number ≥ 0 (0 = off)", missing);
   read_key(value, "outlier_neighbours", where, p.outlier_neighbours, [](int v) { return v >= 1; }, "an integer ≥ 1",
            missing);
+  read_key(value, "min_spacing", where, p.min_spacing, finite_non_negative, "a number ≥ 0 (0 = every point)", nullptr);
   read_key(value, "row_step", where, p.row_step, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
   return p;
 }

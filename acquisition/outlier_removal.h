@@ -6,6 +6,10 @@
 
 namespace scanstation::acquisition {
 
+/// Keeps the points at the (increasing) indices `kept`, with their colours,
+/// normals and confidences. Returns how many were dropped.
+Eigen::Index keep_points(LaserScanPoints& points, const std::vector<Eigen::Index>& kept);
+
 /// Keeps the points with at least `min_neighbours` others within `radius`,
 /// with their colours and confidences, in their order. Returns how many
 /// were removed; `kept`, if given, receives the former index of every point

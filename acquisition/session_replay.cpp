@@ -1,6 +1,7 @@
 #include "acquisition/session_replay.h"
 
 #include "acquisition/outlier_removal.h"
+#include "acquisition/point_spacing.h"
 #include "acquisition/stereo_step_points.h"
 #include "core/errors.h"
 #include "core/image_codecs.h"
@@ -153,6 +154,7 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
   std::optional<StereoScanSetup> stereo_setup;
   if (stereo) stereo_setup = stereo_scan_setup(geometry, result.stereo_parameters);
   result.by_laser.resize(stereo ? 1 : geometry.lasers.size());
+  SpacingFilter spacing(stereo ? result.stereo_parameters.min_spacing : result.parameters.min_spacing);
   for (std::size_t s = 0; s < session.steps.size(); ++s) {
     const SessionStep& step = session.steps[s];
     result.capture_seconds += step.seconds;
@@ -169,8 +171,9 @@ ScanResult replay_session(const SessionContents& session, const ReplayOptions& o
     }
     if (used) {
       for (std::size_t l = 0; l < clouds.size(); ++l) {
-        append_points(result.points, clouds[l]);
         append_points(result.by_laser[l], clouds[l]);
+        result.points_thinned += spacing.thin(clouds[l]);
+        append_points(result.points, clouds[l]);
       }
       ++result.steps_used;
     }
@@ -221,6 +224,7 @@ json write_scan_results(const fs::path& folder, const SessionContents& session, 
       {"complete", static_cast<int>(session.steps.size()) == m.steps && result.steps_used == m.steps},
       {"points", result.points.cloud.size()},
       {"points_per_laser", per_laser},
+      {"points_thinned", result.points_thinned},
       {"outliers_removed", result.outliers_removed},
       {"parameters", m.rig == "stereo" ? to_json(result.stereo_parameters) : to_json(result.parameters)},
       {"problems", result.problems},

@@ -35,7 +35,9 @@ struct ReplayOptions {
 
 /// points            the scan in the object's own coordinates (the mesh file's
 ///                   for a simulated mesh), step by step, laser by laser
-/// by_laser          the same points per laser, in the platter's object frame
+/// by_laser          each laser's points in the platter's object frame, before
+///                   the least spacing (it would thin one laser's by the other's)
+/// points_thinned    points dropped for the least spacing (min_spacing)
 /// steps_used        steps that gave frames to process
 /// problems          the session's damage (read_session) and every frame
 ///                   that could not be used, each naming its file
@@ -51,6 +53,7 @@ struct ScanResult {
   LaserScanPoints points;
   std::vector<LaserScanPoints> by_laser;
   int steps_used = 0;
+  Eigen::Index points_thinned = 0;
   Eigen::Index outliers_removed = 0;
   std::vector<Eigen::Index> fed_index;
   LaserScanParameters parameters;
@@ -64,7 +67,8 @@ struct ScanResult {
 
 /// Processes every recorded step of `session` (missing or unreadable frames
 /// skip their laser, or the step for a laser-off frame, with a problem
-/// noted), then removes outliers if the parameters ask for it and turns the
+/// noted), thinning each step's points to the parameters' least spacing
+/// as they come (on_step sees them thinned), then removes outliers if the parameters ask for it and turns the
 /// points into the object's own coordinates (manifest object.placement).
 ScanResult replay_session(const SessionContents& session, const ReplayOptions& options = {});
 

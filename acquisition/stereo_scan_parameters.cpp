@@ -33,7 +33,8 @@ json to_json(const StereoScanParameters& p) {
           {"volume_height", p.volume_height},
           {"num_disparities", p.num_disparities},
           {"outlier_radius", p.outlier_radius},
-          {"outlier_neighbours", p.outlier_neighbours}};
+          {"outlier_neighbours", p.outlier_neighbours},
+          {"min_spacing", p.min_spacing}};
 }
 
 StereoScanParameters stereo_scan_parameters_from_json(const json& value, const std::string& where,
@@ -66,6 +67,7 @@ StereoScanParameters stereo_scan_parameters_from_json(const json& value, const s
            nullptr);
   read_key(value, "outlier_radius", where, p.outlier_radius, non_negative, "a number ≥ 0 (0 = off)", missing);
   read_key(value, "outlier_neighbours", where, p.outlier_neighbours, at_least(1), "an integer ≥ 1", missing);
+  read_key(value, "min_spacing", where, p.min_spacing, non_negative, "a number ≥ 0 (0 = every point)", nullptr);
   return p;
 }
 

@@ -25,6 +25,8 @@ namespace scanstation::acquisition {
 ///                 the volume reaches
 /// outlier_radius, outlier_neighbours  radius outlier removal over the whole
 ///                 cloud after the last step (0 = off), as for the laser
+/// min_spacing     least distance between two points of the scan
+///                 (point_spacing.h; 0 = every point), as for the laser
 struct StereoScanParameters {
   StereoReconstructionOptions reconstruction;
   double volume_radius = 42.0;
@@ -32,6 +34,7 @@ struct StereoScanParameters {
   int num_disparities = 0;
   double outlier_radius = 0.0;
   int outlier_neighbours = 2;
+  double min_spacing = 0.0;
 };
 
 /// The defaults of a turntable stereo scan: reconstruction_matcher_options()
@@ -41,12 +44,13 @@ StereoScanParameters stereo_scan_defaults();
 /// {"block_size", "uniqueness_ratio", "speckle_window_size", "speckle_range",
 ///  "left_right_tolerance", "minimum_height", "discontinuity",
 ///  "minimum_texture", "pixel_step", "volume_radius", "volume_height",
-///  "num_disparities", "outlier_radius", "outlier_neighbours"}
+///  "num_disparities", "outlier_radius", "outlier_neighbours", "min_spacing"}
 nlohmann::json to_json(const StereoScanParameters& parameters);
 
 /// Reads what to_json wrote; a key that is absent keeps its value in `base`
-/// and is listed in `missing` (when given) — except "num_disparities", which
-/// sessions recorded before it existed lack (0: fitted to the volume). A key of the wrong type or out of
+/// and is listed in `missing` (when given) — except "num_disparities" and "min_spacing",
+/// which sessions recorded before they existed lack (0: fitted to the
+/// volume; 0: every point). A key of the wrong type or out of
 /// range throws InvalidInput naming `where` and the key.
 StereoScanParameters stereo_scan_parameters_from_json(const nlohmann::json& value, const std::string& where,
                                                       const StereoScanParameters& base = stereo_scan_defaults(),

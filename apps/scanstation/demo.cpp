@@ -34,6 +34,10 @@ class DemoCommand final : public Command {
                      "constriction and the six-split need)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
+    cli_->add_option("--min-spacing", job_.parameters.min_spacing,
+                     "Least distance between two points (mm; 0 = every point): thins the profiles where they crowd")
+        ->check(finite_range(0.0, 1e9))
+        ->capture_default_str();
   }
 
   bool makes_output_folder() const override { return true; }
@@ -62,6 +66,11 @@ class DemoCommand final : public Command {
     // ways on the built-in objects (measured), an even sampling.
     job.steps = 90;
     job.parameters.row_step = 6;
+    // Near the top the profiles still crowd closer than the sensor noise:
+    // thinned to 1 mm there (13% of the points), the smooth surface joins
+    // 22 macro edges approximately instead of 89 and lies nearer the
+    // ellipsoid (RMS 0.036 against 0.043 mm; docs/design.md, "Least spacing").
+    job.parameters.min_spacing = 1.0;
     return job;
   }();
 };

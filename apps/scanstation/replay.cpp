@@ -31,6 +31,7 @@ class ReplayCommand final : public Command {
         ->check(finite_range(0.0, 1e6))
         ->capture_default_str();
     parameters_.add_to(*cli_);
+    spacing_.add_to(*cli_);
     stereo_.add_to(*cli_);
   }
 
@@ -50,9 +51,11 @@ class ReplayCommand final : public Command {
     if (contents.manifest.rig == "turntable" && contents.lasers.empty() && calibration_.empty())
       throw nothing("no laser plane of its geometry is intact (replay with --calibration FILE to use another)");
     station::SessionProcessing processing = session_processing(context, contents.manifest, density_);
-    if (parameters_.any()) processing.replay.parameters = parameters_.apply(contents.manifest.parameters);
-    if (!stereo_.given().empty())
-      processing.replay.stereo_parameters = stereo_.apply(contents.manifest.stereo_parameters);
+    const bool stereo = contents.manifest.rig == "stereo";
+    if (parameters_.any() || (spacing_.min_spacing && !stereo))
+      processing.replay.parameters = spacing_.apply(parameters_.apply(contents.manifest.parameters));
+    if (!stereo_.given().empty() || (spacing_.min_spacing && stereo))
+      processing.replay.stereo_parameters = spacing_.apply(stereo_.apply(contents.manifest.stereo_parameters));
     if (!calibration_.empty())
       processing.replay.geometry = acquisition::replay_geometry(calibration_, contents, calibration_max_age_);
     processing.replay.progress = context.progress.stage("replay");
@@ -68,7 +71,8 @@ class ReplayCommand final : public Command {
                          std::to_string(contents.steps.size()) + " recorded steps could be used (see the warnings)");
     for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
       context.log->warn("{}", warning);
-    for (const auto& key : {"steps", "complete", "points", "points_per_laser", "problems", "replay_speedup", "geometry",
+    for (const auto& key : {"steps", "complete", "points", "points_thinned", "points_per_laser", "problems",
+                            "replay_speedup", "geometry",
                             "laser_agreement", "boundary", "smoothing", "accuracy", "outputs"})
       if (report.contains(key)) context.report[key] = report[key];
     const auto& seconds = report["seconds"];
@@ -93,6 +97,7 @@ class ReplayCommand final : public Command {
   std::filesystem::path calibration_;
   double calibration_max_age_ = acquisition::kCalibrationMaxAgeDays;
   ScanParameterOptions parameters_;
+  SpacingOption spacing_;
   StereoParameterOptions stereo_;
 };
 

@@ -50,6 +50,7 @@ class ScanCommand final : public Command {
         ->check(finite_range(0.0, 1e6))
         ->capture_default_str();
     parameters_.add_to(*cli_);
+    spacing_.add_to(*cli_);
     stereo_.add_to(*cli_);
     cli_->footer("With --progress=json, every step emits a \"step\" event and a \"boundary\" event (points so far, "
                  "boundary triangles, all_on_boundary). Ctrl-C stops after the current step and still writes the "
@@ -67,15 +68,15 @@ class ScanCommand final : public Command {
     if (job_.rig != "stereo" && !stereo_.given().empty())
       throw InvalidInput(stereo_.given() + ": a stereo option; the laser rig takes --row-step and the other laser "
                          "processing options");
-    job_.parameters_given = parameters_.any() || !stereo_.given().empty();
+    job_.parameters_given = parameters_.any() || !stereo_.given().empty() || spacing_.min_spacing;
     // Without --station the built-in simulated station of the rig.
     job_.station = job_.rig == "stereo" && station_.station.empty() ? drivers::simulated_stereo_station()
                                                                     : station_.description();
     job_.steps_given = cli_->count("--steps") > 0;
     job_.object_given = cli_->count("--object") > 0;
     job_.up_given = cli_->count("--up") > 0;
-    job_.parameters = parameters_.apply({});
-    job_.stereo_parameters = stereo_.apply(acquisition::stereo_scan_defaults());
+    job_.parameters = spacing_.apply(parameters_.apply({}));
+    job_.stereo_parameters = spacing_.apply(stereo_.apply(acquisition::stereo_scan_defaults()));
     run_scan_job(context, job_);
   }
 
@@ -84,6 +85,7 @@ class ScanCommand final : public Command {
   StationOptions station_;
   ScanJob job_;
   ScanParameterOptions parameters_;
+  SpacingOption spacing_;
   StereoParameterOptions stereo_;
 };
 

@@ -1,5 +1,6 @@
 #include "scan_job.h"
 
+#include "acquisition/point_spacing.h"
 #include "acquisition/session_recording.h"
 #include "acquisition/station_calibration.h"
 #include "core/errors.h"
@@ -232,6 +233,9 @@ station::SessionProcessing session_processing(CommandContext& context, const acq
 }
 
 void print_results(const nlohmann::json& r) {
+  if (const long long thinned = r.value("points_thinned", 0LL); thinned > 0)
+    std::printf("%lld points nearer than %g to a point kept before were dropped (--min-spacing)\n", thinned,
+                r["parameters"]["min_spacing"].get<double>());
   const nlohmann::json& b = r["boundary"];
   if (b.contains("error")) {
     std::printf("no boundary: %s\n", b["error"].get<std::string>().c_str());
@@ -295,7 +299,13 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
   processing.live.placement = manifest.object.placement;
   processing.live.overwrite = io::Overwrite::replace;
   station::LiveBoundary live(processing.live);
-  const auto feed = [&](int step, double angle, const std::vector<acquisition::LaserScanPoints>& clouds) {
+  // The live boundary takes the points as the replay will: thinned to the
+  // least spacing against every point fed before (the resumed steps come
+  // thinned already, which thinning again leaves as they are).
+  acquisition::SpacingFilter spacing(manifest.rig == "stereo" ? manifest.stereo_parameters.min_spacing
+                                                              : manifest.parameters.min_spacing);
+  const auto feed = [&](int step, double angle, std::vector<acquisition::LaserScanPoints> clouds) {
+    for (acquisition::LaserScanPoints& cloud : clouds) spacing.thin(cloud);
     processing.on_live_step(live.add_step(step, angle, clouds));
   };
   if (recorder->steps_done() > 0) {  // resumed: the recorded steps first, so the live boundary holds them all
@@ -319,7 +329,7 @@ void run_scan_job(CommandContext& context, const ScanJob& job) {
   process.stop();
   for (const std::string& warning : report.value("warnings", std::vector<std::string>{}))
     context.log->warn("{}", warning);
-  for (const auto& key : {"rig", "steps", "complete", "points", "points_per_laser", "problems", "object",
+  for (const auto& key : {"rig", "steps", "complete", "points", "points_thinned", "points_per_laser", "problems", "object",
                           "laser_agreement", "boundary", "smoothing", "accuracy", "outputs", "stopped"})
     if (report.contains(key)) context.report[key] = report[key];
   context.report["session"] = job.folder.string();

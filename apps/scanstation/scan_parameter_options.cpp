@@ -56,6 +56,14 @@ acquisition::LaserScanParameters ScanParameterOptions::apply(acquisition::LaserS
   return p;
 }
 
+void SpacingOption::add_to(CLI::App& cli) {
+  cli.add_option("--min-spacing", min_spacing,
+                 "Least distance between two points (mm; 0 = every point): a point nearer one kept before is "
+                 "dropped as it arrives, where profiles or views crowd (near the top of an object, between "
+                 "overlapping stereo views) and the noise is as large as their spacing")
+      ->check(finite_range(0.0, 1e9));
+}
+
 namespace {
 
 // An integer in low..high that is a multiple of `factor`.

@@ -32,4 +32,17 @@ struct StereoParameterOptions {
   acquisition::StereoScanParameters apply(acquisition::StereoScanParameters base) const;
 };
 
+/// --min-spacing, which either rig takes (point_spacing.h).
+struct SpacingOption {
+  std::optional<double> min_spacing;
+
+  void add_to(CLI::App& cli);
+  /// `p` with the spacing given, as it was when none was.
+  template <typename Parameters>
+  Parameters apply(Parameters p) const {
+    if (min_spacing) p.min_spacing = *min_spacing;
+    return p;
+  }
+};
+
 }  // namespace scanstation::app

@@ -12,7 +12,9 @@
 #include "profile_distance.h"
 #include "test_support.h"
 
+#include <algorithm>
 #include <fstream>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <numbers>
 
@@ -205,6 +207,41 @@ TEST_F(RecordedSphere, ReplayGivesByteIdenticalPointsAndNewParametersOtherOnes) 
   const ScanResult other = replay_session(read_session(session()), options);
   EXPECT_EQ(other.points.cloud.size(), same.points.cloud.size());
   EXPECT_FALSE(other.points.cloud.positions.isApprox(same.points.cloud.positions, 1e-12));
+}
+
+TEST_F(RecordedSphere, ReplayThinsToTheLeastSpacingAsThePointsArrive) {
+  const ScanResult all = replay_session(read_session(session()));
+  ReplayOptions options;
+  LaserScanParameters thinned = read_session(session()).manifest.parameters;
+  thinned.min_spacing = 2.0;
+  options.parameters = thinned;
+  Eigen::Index fed = 0;
+  options.on_step = [&](int, double, const std::vector<LaserScanPoints>& clouds, Eigen::Index so_far) {
+    for (const LaserScanPoints& cloud : clouds) fed += cloud.cloud.size();
+    EXPECT_EQ(fed, so_far);  // the step's points as they go into the scan: thinned
+  };
+  const ScanResult thin = replay_session(read_session(session()), options);
+  const Eigen::MatrixX3d &A = all.points.cloud.positions, &T = thin.points.cloud.positions;
+  EXPECT_EQ(fed, T.rows());
+  EXPECT_GT(thin.points_thinned, 0);
+  EXPECT_EQ(T.rows() + thin.points_thinned, A.rows());
+  EXPECT_EQ(thin.points.cloud.colors.rows(), T.rows());
+  // In order, a subsequence of every point, no two nearer than the spacing
+  // and every point dropped within it of one kept before it.
+  Eigen::Index k = 0;
+  for (Eigen::Index i = 0; i < A.rows(); ++i) {
+    if (k < T.rows() && A.row(i) == T.row(k)) {
+      for (Eigen::Index j = 0; j < k; ++j) EXPECT_GE((T.row(j) - T.row(k)).norm(), 2.0);
+      ++k;
+      continue;
+    }
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < k; ++j) nearest = std::min(nearest, (T.row(j) - A.row(i)).norm());
+    EXPECT_LT(nearest, 2.0);
+  }
+  EXPECT_EQ(k, T.rows());
+  // Each laser's own points stay whole for their agreement check.
+  EXPECT_EQ(thin.by_laser[0].cloud.size() + thin.by_laser[1].cloud.size(), A.rows());
 }
 
 // Each problem names a frame and what is wrong with it, then what the
@@ -514,9 +551,19 @@ TEST(Session, ParametersRoundTripThroughJson) {
   p.line.fit = PeakFit::parabolic;
   p.line.region = cv::Rect(1, 2, 30, 40);
   p.outlier_radius = 0.75;
+  p.min_spacing = 0.4;
   const json text = to_json(p);
   const LaserScanParameters back = laser_scan_parameters_from_json(text, "p");
   EXPECT_EQ(to_json(back), text);
+  // Sessions recorded before the least spacing existed kept every point.
+  json older = text;
+  older.erase("min_spacing");
+  std::vector<std::string> missing;
+  EXPECT_EQ(laser_scan_parameters_from_json(older, "p", {}, &missing).min_spacing, 0.0);
+  EXPECT_TRUE(missing.empty());
+  older["min_spacing"] = -1;
+  test::expect_error<InvalidInput>([&] { laser_scan_parameters_from_json(older, "manifest.json: parameters"); },
+                                   {"manifest.json: parameters.min_spacing", "≥ 0"});
   json bad = text;
   bad["saturation"] = 300;
   test::expect_error<InvalidInput>([&] { laser_scan_parameters_from_json(bad, "manifest.json: parameters"); },

@@ -107,9 +107,15 @@ TEST(StereoSession, ParametersRoundTripAndBadValuesNamed) {
   EXPECT_EQ(to_json(back), to_json(p));
   std::vector<std::string> missing;
   stereo_scan_parameters_from_json(json::object(), "m", stereo_scan_defaults(), &missing);
-  // Every key named when absent but num_disparities, which older sessions lack (0: fitted).
-  EXPECT_EQ(missing.size(), to_json(p).size() - 1);
+  // Every key named when absent but num_disparities and min_spacing, which
+  // older sessions lack (0: fitted; 0: every point).
+  EXPECT_EQ(missing.size(), to_json(p).size() - 2);
   EXPECT_THAT(missing, testing::Not(testing::Contains(testing::HasSubstr("num_disparities"))));
+  EXPECT_THAT(missing, testing::Not(testing::Contains(testing::HasSubstr("min_spacing"))));
+  p.min_spacing = 0.8;
+  EXPECT_EQ(stereo_scan_parameters_from_json(to_json(p), "m").min_spacing, 0.8);
+  test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"min_spacing", -2}}, "p"); },
+                                   {"p.min_spacing", "≥ 0"});
   p.num_disparities = 96;
   EXPECT_EQ(stereo_scan_parameters_from_json(to_json(p), "m").num_disparities, 96);
   test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"num_disparities", 40}}, "p"); },

@@ -571,6 +571,11 @@ TEST(Cli, DemoWritesItsResultsAndIsDeterministic) {
   EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
   EXPECT_EQ(report["boundary"]["all_on_boundary"], true);
   EXPECT_LT(report["accuracy"]["points"]["rms_of_diagonal"].get<double>(), 5e-4);
+  // The demo thins its points to 1 mm apart as they arrive.
+  EXPECT_EQ(report["parameters"]["min_spacing"], 1.0);
+  const Eigen::MatrixX3d P = io::read_points(dir / "a" / "points.ply").positions;
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    for (Eigen::Index j = i + 1; j < P.rows(); ++j) ASSERT_GE((P.row(i) - P.row(j)).norm(), 1.0) << i << ' ' << j;
 }
 
 TEST(Cli, FlintstoneApproximateInsideIntersect) {

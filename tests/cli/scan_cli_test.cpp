@@ -8,7 +8,9 @@
 #include "sim/shapes.h"
 #include "test_support.h"
 
+#include <algorithm>
 #include <csignal>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <spawn.h>
 #include <unistd.h>
@@ -203,6 +205,47 @@ TEST_F(ScannedSphere, StoppedScanResumesToTheSamePoints) {
   EXPECT_THAT(second.out, testing::HasSubstr("scanned " + std::to_string(kSteps)));
   EXPECT_EQ(slurp(dir / "s" / "points.ply"), slurp(session() / "points.ply"));
   EXPECT_EQ(slurp(dir / "s" / "mesh.ply"), slurp(session() / "mesh.ply"));
+}
+
+// --min-spacing thins the points as they stream in, the same way live, on
+// replay and across a resume: the live boundary stands (it was fed what the
+// replay gives), and no two points are nearer than the spacing.
+TEST_F(ScannedSphere, ThinnedScanIsLiveAsReplayedAndResumesToTheSameMesh) {
+  ScratchFolder dir;
+  const double spacing = 1.5;
+  const std::string thinned = " --min-spacing " + std::to_string(spacing);
+  const Outcome whole = scanstation(scan_args(dir / "s") + thinned);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const json report = json::parse(slurp(dir / "s" / "report.json"));
+  const json all = json::parse(slurp(session() / "report.json"));
+  EXPECT_EQ(report["parameters"]["min_spacing"], spacing);
+  EXPECT_GT(report["points_thinned"].get<int>(), 0);
+  EXPECT_EQ(report["points"].get<int>() + report["points_thinned"].get<int>(), all["points"].get<int>());
+  EXPECT_THAT(report["boundary"]["built"].get<std::string>(), testing::StartsWith("incremental"));
+  EXPECT_EQ(report["boundary"]["all_on_boundary"], true);
+  EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
+  const Eigen::MatrixX3d P = io::read_points(dir / "s" / "points.ply").positions;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    for (Eigen::Index j = i + 1; j < P.rows(); ++j) nearest = std::min(nearest, (P.row(i) - P.row(j)).norm());
+  EXPECT_GE(nearest, spacing);
+
+  ScratchFolder out;
+  ASSERT_EQ(scanstation("replay " + (dir / "s").string() + " -o " + (out / "same").string()).exit_code, 0);
+  for (const char* file : {"points.ply", "mesh.ply", "smooth.ply"})
+    EXPECT_EQ(slurp(out / "same" / file), slurp(dir / "s" / file)) << file;
+  // Every point again on replay with 0.
+  ASSERT_EQ(scanstation("replay " + (dir / "s").string() + " -o " + (out / "all").string() + " --min-spacing 0").exit_code,
+            0);
+  EXPECT_EQ(slurp(out / "all" / "points.ply"), slurp(session() / "points.ply"));
+
+  const Outcome first = scanstation(scan_args(dir / "r") + thinned + " --stop-after 4");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const Outcome second = scanstation("scan --resume --station " + station_.string() + " -o " + (dir / "r").string());
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_THAT(json::parse(slurp(dir / "r" / "report.json"))["boundary"]["built"].get<std::string>(),
+              testing::StartsWith("incremental"));
+  for (const char* file : {"points.ply", "mesh.ply"}) EXPECT_EQ(slurp(dir / "r" / file), slurp(dir / "s" / file)) << file;
 }
 
 TEST_F(ScannedSphere, ScanKilledBySigtermKeepsItsStepsAndResumes) {
