@@ -224,6 +224,18 @@ TEST_F(ScannedSphere, ThinnedScanIsLiveAsReplayedAndResumesToTheSameMesh) {
   EXPECT_THAT(report["boundary"]["built"].get<std::string>(), testing::StartsWith("incremental"));
   EXPECT_EQ(report["boundary"]["all_on_boundary"], true);
   EXPECT_EQ(report["boundary"]["topology"]["genus"], 0);
+  // The hint to even the sampling out comes exactly when more than one
+  // macro edge in twenty is joined approximately: here on every point (10
+  // steps, every row) and not once thinned.
+  for (const json* r : {&all, &report}) {
+    const auto approximate = (*r)["smoothing"]["dependent_edges"].get<long long>();
+    const auto edges = 3 * (*r)["boundary"]["faces"].get<long long>() / 2;
+    const bool hinted = r->contains("warnings") && testing::Value((*r)["warnings"].dump(),
+                                                                  testing::HasSubstr("--min-spacing (mm) even the sampling out"));
+    EXPECT_EQ(hinted, 20 * approximate > edges) << approximate << " of " << edges;
+  }
+  EXPECT_THAT(scan_->err, testing::HasSubstr("--min-spacing (mm) even the sampling out"));
+  EXPECT_EQ(whole.err.find("even the sampling out"), std::string::npos) << whole.err;
   const Eigen::MatrixX3d P = io::read_points(dir / "s" / "points.ply").positions;
   double nearest = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < P.rows(); ++i)
