@@ -1,4 +1,4 @@
-// Reading one numeric key of a parameters object (laser_scan_parameters.h,
+// Reading one numeric or true/false key of a parameters object (laser_scan_parameters.h,
 // stereo_scan_parameters.h) with the error naming where it is.
 #pragma once
 
@@ -22,7 +22,9 @@ void read_key(const nlohmann::json& object, const char* key, const std::string& 
     if (missing) missing->push_back(where + "." + key);
     return;
   }
-  const bool right_type = std::is_integral_v<T> ? it->is_number_integer() : it->is_number();
+  const bool right_type = std::is_same_v<T, bool> ? it->is_boolean()
+                          : std::is_integral_v<T> ? it->is_number_integer()
+                                                  : it->is_number();
   if (!right_type || !valid(it->template get<T>()))
     throw InvalidInput(where + "." + key + ": expected " + expected + ", got " + it->dump());
   target = it->template get<T>();

@@ -103,6 +103,19 @@ cv::Mat rectify(const StereoStation& station, const cv::Mat& frame, bool left) {
   return rectified;
 }
 
+// The mean (x, y, d, 1) of the matched pixels within `half` of (x, y) whose
+// disparity is within `same_surface` of (x, y)'s (StereoReconstructionOptions::cell_mean).
+cv::Vec4d cell_mean(const cv::Mat& disparity, int x, int y, int half, double same_surface) {
+  const double centre = disparity.at<float>(y, x);
+  cv::Vec4d sum(0, 0, 0, 0);
+  for (int v = std::max(0, y - half); v <= std::min(disparity.rows - 1, y + half); ++v) {
+    const float* row = disparity.ptr<float>(v);
+    for (int u = std::max(0, x - half); u <= std::min(disparity.cols - 1, x + half); ++u)
+      if (row[u] > 0 && std::abs(row[u] - centre) <= same_surface) sum += cv::Vec4d(u, v, row[u], 1.0);
+  }
+  return sum / sum[3];  // the centre itself is one of them
+}
+
 }  // namespace
 
 std::pair<cv::Mat, cv::Mat> rectify_pair(const StereoStation& station, const cv::Mat& left, const cv::Mat& right) {
@@ -176,6 +189,9 @@ void disparity_to_points(const StereoStation& station, const cv::Mat& disparity,
   const cv::Mat texture = horizontal_texture(rectified_left, std::max(3, options.matcher.block_size));
 
   if (options.pixel_step < 1) throw InvalidInput("stereo: the pixel step must be at least 1");
+  const int half = options.cell_mean ? options.pixel_step / 2 : 0;
+  const double same_surface =
+      options.discontinuity > 0 ? options.discontinuity : std::numeric_limits<double>::infinity();
   std::vector<Eigen::Vector3d> found;
   std::vector<std::array<std::uint8_t, 3>> colours;
   std::vector<double> confidence;
@@ -187,7 +203,7 @@ void disparity_to_points(const StereoStation& station, const cv::Mat& disparity,
       if (options.discontinuity > 0 && range > options.discontinuity) continue;
       const double g = texture.at<float>(y, x);
       if (g < options.minimum_texture) continue;
-      const cv::Vec4d h = Q * cv::Vec4d(x, y, d[x], 1.0);
+      const cv::Vec4d h = Q * (half > 0 ? cell_mean(disparity, x, y, half, same_surface) : cv::Vec4d(x, y, d[x], 1.0));
       if (!(h[3] > 0)) continue;  // behind the cameras: a mismatch
       const Eigen::Vector3d p = rotation * Eigen::Vector3d(h[0], h[1], h[2]) / h[3] + offset;
       // The turntable turns about z: height and radius are the same in the

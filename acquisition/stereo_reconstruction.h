@@ -82,6 +82,13 @@ StereoOptions reconstruction_matcher_options();
 /// pixel_step       reproject every n-th pixel of every n-th row only: a
 ///                  sampling as even as the turntable steps are apart, and
 ///                  as sparse as the reconstruction downstream can take
+/// cell_mean        with pixel_step n > 1: each point from the mean (x, y, d)
+///                  of the matched pixels within n/2 of its pixel whose
+///                  disparity is within `discontinuity` of its own (one
+///                  surface; all matched pixels when discontinuity ≤ 0)
+///                  rather than from the pixel alone. A plane's disparity is
+///                  affine in the rectified frame, so the mean lies on it;
+///                  the matching noise averages down
 struct StereoReconstructionOptions {
   StereoOptions matcher = reconstruction_matcher_options();
   double minimum_height = 0.5;
@@ -91,6 +98,7 @@ struct StereoReconstructionOptions {
   double minimum_texture = 2.0;
   double texture_scale = 6.0;
   int pixel_step = 1;
+  bool cell_mean = false;
 };
 
 /// The points of a rectified disparity map (compute_disparity's convention:

@@ -29,6 +29,7 @@ json to_json(const StereoScanParameters& p) {
           {"discontinuity", r.discontinuity},
           {"minimum_texture", r.minimum_texture},
           {"pixel_step", r.pixel_step},
+          {"cell_mean", r.cell_mean},
           {"volume_radius", p.volume_radius},
           {"volume_height", p.volume_height},
           {"num_disparities", p.num_disparities},
@@ -60,6 +61,7 @@ StereoScanParameters stereo_scan_parameters_from_json(const json& value, const s
            "a number (≤ 0 = off)", missing);
   read_key(value, "minimum_texture", where, r.minimum_texture, non_negative, "a number ≥ 0", missing);
   read_key(value, "pixel_step", where, r.pixel_step, at_least(1), "an integer ≥ 1", missing);
+  read_key(value, "cell_mean", where, r.cell_mean, [](bool) { return true; }, "true or false", nullptr);
   read_key(value, "volume_radius", where, p.volume_radius, positive, "a positive number", missing);
   read_key(value, "volume_height", where, p.volume_height, positive, "a positive number", missing);
   read_key(value, "num_disparities", where, p.num_disparities,

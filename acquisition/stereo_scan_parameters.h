@@ -43,14 +43,14 @@ StereoScanParameters stereo_scan_defaults();
 
 /// {"block_size", "uniqueness_ratio", "speckle_window_size", "speckle_range",
 ///  "left_right_tolerance", "minimum_height", "discontinuity",
-///  "minimum_texture", "pixel_step", "volume_radius", "volume_height",
+///  "minimum_texture", "pixel_step", "cell_mean", "volume_radius", "volume_height",
 ///  "num_disparities", "outlier_radius", "outlier_neighbours", "min_spacing"}
 nlohmann::json to_json(const StereoScanParameters& parameters);
 
 /// Reads what to_json wrote; a key that is absent keeps its value in `base`
-/// and is listed in `missing` (when given) — except "num_disparities" and "min_spacing",
-/// which sessions recorded before they existed lack (0: fitted to the
-/// volume; 0: every point). A key of the wrong type or out of
+/// and is listed in `missing` (when given) — except "num_disparities", "min_spacing" and
+/// "cell_mean", which sessions recorded before they existed lack (0: fitted
+/// to the volume; 0: every point; false: each pixel alone). A key of the wrong type or out of
 /// range throws InvalidInput naming `where` and the key.
 StereoScanParameters stereo_scan_parameters_from_json(const nlohmann::json& value, const std::string& where,
                                                       const StereoScanParameters& base = stereo_scan_defaults(),

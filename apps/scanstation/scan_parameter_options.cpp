@@ -91,6 +91,9 @@ void StereoParameterOptions::add_to(CLI::App& cli) {
                  "--rig stereo: reproject every n-th pixel of every n-th row (an even sampling, sparse enough for the "
                  "live boundary; default 8)")
       ->check(CLI::Range(1, 1000));
+  cli.add_flag("--cell-mean", cell_mean,
+                 "--rig stereo: each point from the mean of the matched pixels of its pixel-step cell on the same "
+                 "surface, not from its pixel alone (less matching noise; off by default)");
 }
 
 std::string StereoParameterOptions::given() const {
@@ -98,6 +101,7 @@ std::string StereoParameterOptions::given() const {
   if (num_disparities) return "--num-disparities";
   if (uniqueness_ratio) return "--uniqueness";
   if (pixel_step) return "--pixel-step";
+  if (cell_mean) return "--cell-mean";
   return "";
 }
 
@@ -106,6 +110,7 @@ acquisition::StereoScanParameters StereoParameterOptions::apply(acquisition::Ste
   if (num_disparities) p.num_disparities = *num_disparities;
   if (uniqueness_ratio) p.reconstruction.matcher.uniqueness_ratio = *uniqueness_ratio;
   if (pixel_step) p.reconstruction.pixel_step = *pixel_step;
+  if (cell_mean) p.reconstruction.cell_mean = true;
   return p;
 }
 

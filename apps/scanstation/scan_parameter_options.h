@@ -25,6 +25,7 @@ struct ScanParameterOptions {
 
 struct StereoParameterOptions {
   std::optional<int> block_size, num_disparities, uniqueness_ratio, pixel_step;
+  bool cell_mean = false;  // a flag: on when given
 
   void add_to(CLI::App& cli);
   /// The first option given ("--block-size", ...), or "" when none was.

@@ -72,6 +72,84 @@ TEST(StereoReconstruction, DisparityReprojectsToThePointsInTheObjectFrame) {
                                    {"size"});
 }
 
+// A plane's disparity is affine in the rectified frame (1/Z is affine in the
+// pixel for a plane): d = 40 + 0.05 (x − 80) − 0.03 (y − 60), and with
+// `step` more from column 83 on (a second plane behind a depth edge that
+// runs through the cells of column 80, three pixels off their centres).
+cv::Mat planar_disparity(double step) {
+  cv::Mat disparity(120, 160, CV_32F);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x)
+      disparity.at<float>(y, x) = static_cast<float>(40 + 0.05 * (x - 80) - 0.03 * (y - 60) + (x >= 83 ? step : 0.0));
+  return disparity;
+}
+
+// The plane through the reprojected points (least squares): unit normal and
+// offset.
+std::pair<Eigen::Vector3d, double> fitted_plane(const Eigen::MatrixX3d& P) {
+  const Eigen::RowVector3d centre = P.colwise().mean();
+  const Eigen::MatrixX3d centred = P.rowwise() - centre;
+  const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(centred, Eigen::ComputeThinV);
+  const Eigen::Vector3d n = svd.matrixV().col(2);
+  return {n, n.dot(centre.transpose())};
+}
+
+double rms_off(const Eigen::MatrixX3d& P, const std::pair<Eigen::Vector3d, double>& plane) {
+  return std::sqrt(((P * plane.first).array() - plane.second).square().mean());
+}
+
+TEST(StereoReconstruction, CellMeansStayOnAPlaneAndAverageTheMatchingNoiseDown) {
+  const sim::StereoRig rig = sim::stereo_rig(60.0, platter_radius, 160, 120);
+  StereoStation station = stereo_station(rig.left, rig.right);
+  StereoReconstructionOptions options;
+  options.minimum_height = -std::numeric_limits<double>::infinity();
+  options.minimum_texture = 0;
+  options.discontinuity = 0;
+  options.pixel_step = 8;
+  const cv::Mat grey(120, 160, CV_8U, cv::Scalar(90));
+  const auto points = [&](const cv::Mat& disparity, bool mean) {
+    StereoReconstructionOptions o = options;
+    o.cell_mean = mean;
+    LaserScanPoints out;
+    disparity_to_points(station, disparity, grey, 0.4, out, o);
+    return out.cloud.positions;
+  };
+  cv::Mat clean = planar_disparity(0);
+  const auto plane = fitted_plane(points(clean, false));
+  ASSERT_LT(rms_off(points(clean, false), plane), 1e-4);
+  // Unmatched pixels in the cells (every seventh): the mean of those left
+  // is still on the plane.
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x)
+      if ((x + 3 * y) % 7 == 0 && (x % 8 || y % 8)) clean.at<float>(y, x) = -1;
+  const Eigen::MatrixX3d on = points(clean, true);
+  EXPECT_EQ(on.rows(), 20 * 15);
+  EXPECT_LT(((on * plane.first).array() - plane.second).abs().maxCoeff(), 1e-3);
+  // Matching noise, independent per pixel (0.3 px): the cell means lie
+  // several times closer to the plane than the pixels alone.
+  sim::Random random(5);
+  cv::Mat noisy = planar_disparity(0);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) noisy.at<float>(y, x) += static_cast<float>(0.3 * random.normal());
+  const double alone = rms_off(points(noisy, false), plane), mean = rms_off(points(noisy, true), plane);
+  EXPECT_LT(mean, alone / 4) << mean << " against " << alone;
+  // A depth edge of 5 px: with the discontinuity tolerance each cell mean
+  // keeps to one plane.
+  const cv::Mat behind = planar_disparity(0) + 5.0;
+  const auto far = fitted_plane(points(behind, false));
+  options.discontinuity = 1.5;
+  const Eigen::MatrixX3d split = points(planar_disparity(5), true);
+  int on_near = 0, on_far = 0;
+  for (Eigen::Index i = 0; i < split.rows(); ++i) {
+    const double to_near = std::abs(split.row(i).dot(plane.first) - plane.second),
+                 to_far = std::abs(split.row(i).dot(far.first) - far.second);
+    EXPECT_LT(std::min(to_near, to_far), 1e-3) << i;
+    (to_near < to_far ? on_near : on_far) += 1;
+  }
+  EXPECT_GT(on_near, 100);
+  EXPECT_GT(on_far, 100);
+}
+
 // The disparities of every true object point lie in the searched range, and
 // the rectified rows agree (the epipolar lines are rows).
 TEST(StereoReconstruction, RectificationAndDisparityRangeCoverTheWorkingVolume) {

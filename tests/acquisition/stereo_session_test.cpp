@@ -107,9 +107,15 @@ TEST(StereoSession, ParametersRoundTripAndBadValuesNamed) {
   EXPECT_EQ(to_json(back), to_json(p));
   std::vector<std::string> missing;
   stereo_scan_parameters_from_json(json::object(), "m", stereo_scan_defaults(), &missing);
-  // Every key named when absent but num_disparities and min_spacing, which
-  // older sessions lack (0: fitted; 0: every point).
-  EXPECT_EQ(missing.size(), to_json(p).size() - 2);
+  // Every key named when absent but num_disparities, min_spacing and
+  // cell_mean, which older sessions lack (0: fitted; 0: every point; false:
+  // each pixel alone).
+  EXPECT_EQ(missing.size(), to_json(p).size() - 3);
+  EXPECT_FALSE(stereo_scan_parameters_from_json(json::object(), "m").reconstruction.cell_mean);
+  p.reconstruction.cell_mean = true;
+  EXPECT_TRUE(stereo_scan_parameters_from_json(to_json(p), "m").reconstruction.cell_mean);
+  test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"cell_mean", 1}}, "p"); },
+                                   {"p.cell_mean", "true or false"});
   EXPECT_THAT(missing, testing::Not(testing::Contains(testing::HasSubstr("num_disparities"))));
   EXPECT_THAT(missing, testing::Not(testing::Contains(testing::HasSubstr("min_spacing"))));
   p.min_spacing = 0.8;

@@ -132,6 +132,18 @@ TEST(StereoScanSession, InterruptedAndResumedGivesTheSameResultAndDamageIsReport
   EXPECT_EQ(laser_options.exit_code, 1);
   EXPECT_THAT(laser_options.err, testing::HasSubstr("stereo session"));
 
+  // Cell means: the same pixels, each point the mean of its cell on one
+  // surface, nearer the true sphere; the least spacing thins the stereo
+  // stream as the laser's.
+  const Outcome mean = scanstation(replay(dir / "whole", dir / "mean", "--cell-mean --min-spacing 1"));
+  ASSERT_EQ(mean.exit_code, 0) << mean.err;
+  const json alone = json::parse(slurp(dir / "whole" / "report.json")), averaged = json::parse(slurp(dir / "mean" / "report.json"));
+  EXPECT_EQ(averaged["parameters"]["cell_mean"], true);
+  EXPECT_EQ(alone["parameters"]["cell_mean"], false);
+  EXPECT_GT(averaged["points_thinned"].get<long long>(), 0);
+  const auto rms = [](const json& r) { return r["accuracy"]["points"]["rms"].get<double>(); };
+  EXPECT_LT(rms(averaged), 0.9 * rms(alone)) << rms(averaged) << " against " << rms(alone);
+
   // A lost right frame skips its step, named; the rest is replayed.
   fs::remove(dir / "whole" / "frames" / "step_0001_right_dots.png");
   const Outcome damaged = scanstation(replay(dir / "whole", dir / "r2"));
