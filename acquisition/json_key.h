@@ -30,4 +30,9 @@ void read_key(const nlohmann::json& object, const char* key, const std::string& 
   target = it->template get<T>();
 }
 
+/// A recorded least point spacing (point_spacing.h): 0, or a distance the
+/// spacing filter can number its cubes by for any station's points.
+inline bool valid_min_spacing(double v) { return v == 0 || (v >= 1e-6 && v <= 1e9); }
+inline constexpr const char* kMinSpacingRange = "0 (every point) or a distance from 1e-6 to 1e9";
+
 }  // namespace scanstation::acquisition

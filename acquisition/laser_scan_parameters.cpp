@@ -99,7 +99,7 @@ LaserScanParameters laser_scan_parameters_from_json(const json& value, const std
   read_key(value, "outlier_radius", where, p.outlier_radius, finite_non_negative, "a number ≥ 0 (0 = off)", missing);
   read_key(value, "outlier_neighbours", where, p.outlier_neighbours, [](int v) { return v >= 1; }, "an integer ≥ 1",
            missing);
-  read_key(value, "min_spacing", where, p.min_spacing, finite_non_negative, "a number ≥ 0 (0 = every point)", nullptr);
+  read_key(value, "min_spacing", where, p.min_spacing, valid_min_spacing, kMinSpacingRange, nullptr);
   read_key(value, "row_step", where, p.row_step, [](int v) { return v >= 1; }, "an integer ≥ 1", missing);
   return p;
 }

@@ -29,7 +29,8 @@ class SpacingFilter {
   /// Drops from `points`, in order, every point within the spacing of a
   /// point kept before (by this filter, in this or an earlier call), with
   /// its colour and confidence. Returns how many were dropped. Throws
-  /// InvalidInput for a point more than 2²⁰ spacings from the origin.
+  /// InvalidInput for a point that is not finite or more than 2⁶²
+  /// spacings from the origin.
   Eigen::Index thin(LaserScanPoints& points);
 
   double spacing() const { return spacing_; }

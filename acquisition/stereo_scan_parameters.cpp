@@ -69,7 +69,7 @@ StereoScanParameters stereo_scan_parameters_from_json(const json& value, const s
            nullptr);
   read_key(value, "outlier_radius", where, p.outlier_radius, non_negative, "a number ≥ 0 (0 = off)", missing);
   read_key(value, "outlier_neighbours", where, p.outlier_neighbours, at_least(1), "an integer ≥ 1", missing);
-  read_key(value, "min_spacing", where, p.min_spacing, non_negative, "a number ≥ 0 (0 = every point)", nullptr);
+  read_key(value, "min_spacing", where, p.min_spacing, valid_min_spacing, kMinSpacingRange, nullptr);
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include "core/io/mesh_io.h"
 #include "drivers/station_description.h"
 #include "scan_job.h"
+#include "scan_parameter_options.h"
 #include "sim/scan_objects.h"
 
 #include <cstdio>
@@ -36,7 +37,7 @@ class DemoCommand final : public Command {
         ->capture_default_str();
     cli_->add_option("--min-spacing", job_.parameters.min_spacing,
                      "Least distance between two points (mm; 0 = every point): thins the profiles where they crowd")
-        ->check(finite_range(0.0, 1e9))
+        ->check(least_spacing())
         ->capture_default_str();
   }
 

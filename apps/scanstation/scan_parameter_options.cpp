@@ -1,5 +1,6 @@
 #include "scan_parameter_options.h"
 
+#include "acquisition/json_key.h"
 #include "command.h"
 #include "core/errors.h"
 
@@ -56,12 +57,23 @@ acquisition::LaserScanParameters ScanParameterOptions::apply(acquisition::LaserS
   return p;
 }
 
+CLI::Validator least_spacing() {
+  return CLI::Validator(
+      [](const std::string& value) {
+        const std::optional<double> x = parse_whole<double>(value);
+        if (!x || !acquisition::valid_min_spacing(*x))
+          return std::string("expected ") + acquisition::kMinSpacingRange + " (mm), got " + value;
+        return std::string();
+      },
+      "0 or 1e-6..1e9");
+}
+
 void SpacingOption::add_to(CLI::App& cli) {
   cli.add_option("--min-spacing", min_spacing,
                  "Least distance between two points (mm; 0 = every point): a point nearer one kept before is "
                  "dropped as it arrives, where profiles or views crowd (near the top of an object, between "
                  "overlapping stereo views) and the noise is as large as their spacing")
-      ->check(finite_range(0.0, 1e9));
+      ->check(least_spacing());
 }
 
 namespace {

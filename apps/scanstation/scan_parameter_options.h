@@ -33,6 +33,9 @@ struct StereoParameterOptions {
   acquisition::StereoScanParameters apply(acquisition::StereoScanParameters base) const;
 };
 
+/// 0 (every point) or a least point spacing from 1e-6 to 1e9 (mm).
+CLI::Validator least_spacing();
+
 /// --min-spacing, which either rig takes (point_spacing.h).
 struct SpacingOption {
   std::optional<double> min_spacing;

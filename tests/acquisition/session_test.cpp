@@ -563,7 +563,7 @@ TEST(Session, ParametersRoundTripThroughJson) {
   EXPECT_TRUE(missing.empty());
   older["min_spacing"] = -1;
   test::expect_error<InvalidInput>([&] { laser_scan_parameters_from_json(older, "manifest.json: parameters"); },
-                                   {"manifest.json: parameters.min_spacing", "≥ 0"});
+                                   {"manifest.json: parameters.min_spacing", "0 (every point) or a distance from 1e-6"});
   json bad = text;
   bad["saturation"] = 300;
   test::expect_error<InvalidInput>([&] { laser_scan_parameters_from_json(bad, "manifest.json: parameters"); },

@@ -121,7 +121,7 @@ TEST(StereoSession, ParametersRoundTripAndBadValuesNamed) {
   p.min_spacing = 0.8;
   EXPECT_EQ(stereo_scan_parameters_from_json(to_json(p), "m").min_spacing, 0.8);
   test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"min_spacing", -2}}, "p"); },
-                                   {"p.min_spacing", "≥ 0"});
+                                   {"p.min_spacing", "0 (every point) or a distance from 1e-6"});
   p.num_disparities = 96;
   EXPECT_EQ(stereo_scan_parameters_from_json(to_json(p), "m").num_disparities, 96);
   test::expect_error<InvalidInput>([] { stereo_scan_parameters_from_json({{"num_disparities", 40}}, "p"); },
