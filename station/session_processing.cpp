@@ -128,8 +128,9 @@ std::string uneven_sampling_hint(const SurfaceSmoothing& smooth, Eigen::Index fa
   const std::size_t approximate = smooth.surface.dependent_edges.size(), edges = 3 * static_cast<std::size_t>(faces) / 2;
   if (edges == 0 || 20 * approximate <= edges) return "";
   return "the smooth surface joins " + std::to_string(approximate) + " of its " + std::to_string(edges) +
-         " macro edges approximately (not G1 there): the points are unevenly spaced (slivers); " +
-         (rig == "stereo" ? "--pixel-step" : "--row-step and --steps") +
+         " macro edges approximately (not G1 there): the points are unevenly spaced (slivers) or noisy for their "
+         "spacing; " +
+         (rig == "stereo" ? "--pixel-step, --cell-mean" : "--row-step and --steps") +
          " or --min-spacing (mm) even the sampling out (README, Known limits)";
 }
 
