@@ -234,7 +234,7 @@ station::SessionProcessing session_processing(CommandContext& context, const acq
 
 void print_results(const nlohmann::json& r) {
   if (const long long thinned = r.value("points_thinned", 0LL); thinned > 0)
-    std::printf("%lld points nearer than %g to a point kept before were dropped (--min-spacing)\n", thinned,
+    std::printf("%lld points nearer than %g mm to a point kept before were dropped (--min-spacing)\n", thinned,
                 r["parameters"]["min_spacing"].get<double>());
   const nlohmann::json& b = r["boundary"];
   if (b.contains("error")) {
