@@ -2,36 +2,13 @@
 // of a query sits in one of the 27 cubes around it.
 #pragma once
 
-#include "core/errors.h"
-
 #include <Eigen/Core>
 
-#include <cmath>
 #include <cstdint>
-#include <string>
 #include <unordered_map>
 #include <vector>
 
 namespace scanstation::acquisition {
-
-/// The cube of side `side` holding p, as whole numbers (floor(p / side));
-/// InvalidInput, prefixed by `what`, for a point more than 2²⁰ cubes from
-/// the origin or not finite.
-inline Eigen::Vector3d cube_of(const Eigen::Vector3d& p, double side, const char* what) {
-  const Eigen::Vector3d cell = (p / side).array().floor();
-  constexpr double half = 1 << 20;
-  if (!((cell.array() >= -half).all() && (cell.array() < half).all()))
-    throw InvalidInput(std::string(what) + ": a point lies more than 2^20 cubes of " + std::to_string(side) +
-                       " from the origin (or is not finite)");
-  return cell;
-}
-
-/// An exact key of a cube_of: 21 bits per axis, no two cubes share one.
-inline std::uint64_t cube_key(const Eigen::Vector3d& cell) {
-  std::uint64_t key = 0;
-  for (int k = 0; k < 3; ++k) key = (key << 21) | static_cast<std::uint64_t>(static_cast<std::int64_t>(cell[k]) + (1 << 20));
-  return key;
-}
 
 class PointGrid {
  public:

@@ -33,8 +33,6 @@ class SpacingFilter {
   /// spacings from the origin.
   Eigen::Index thin(LaserScanPoints& points);
 
-  double spacing() const { return spacing_; }
-
  private:
   bool near_kept(const Eigen::Vector3d& p, const Eigen::Vector3d& cell) const;
 

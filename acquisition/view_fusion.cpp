@@ -1,7 +1,6 @@
 #include "acquisition/view_fusion.h"
 
 #include "acquisition/outlier_removal.h"
-#include "acquisition/point_grid.h"
 #include "core/errors.h"
 
 #include <algorithm>
@@ -22,6 +21,20 @@ struct Cube {
   std::size_t last_view = 0;
 };
 
+// 21 bits per axis, exact: no two cubes share a key.
+std::uint64_t cube_key(const Eigen::Vector3d& p, double voxel) {
+  constexpr std::int64_t half = std::int64_t{1} << 20;
+  std::uint64_t key = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double cell = std::floor(p[k] / voxel);
+    if (!(cell >= -half && cell < half))
+      throw InvalidInput("view fusion: a point lies more than 2^20 cubes of " + std::to_string(voxel) +
+                         " from the origin (or is not finite)");
+    key = (key << 21) | static_cast<std::uint64_t>(static_cast<std::int64_t>(cell) + half);
+  }
+  return key;
+}
+
 }  // namespace
 
 LaserScanPoints fuse_views(const std::vector<LaserScanPoints>& views, const FusionOptions& options) {
@@ -37,7 +50,7 @@ LaserScanPoints fuse_views(const std::vector<LaserScanPoints>& views, const Fusi
                          " points but a different number of colours or confidences");
     for (Eigen::Index i = 0; i < n; ++i) {
       const Eigen::Vector3d p = view.cloud.positions.row(i);
-      const auto [it, added] = index.try_emplace(cube_key(cube_of(p, options.voxel, "view fusion")), cubes.size());
+      const auto [it, added] = index.try_emplace(cube_key(p, options.voxel), cubes.size());
       if (added) cubes.emplace_back();
       Cube& cube = cubes[it->second];
       const double c = view.confidence.empty() ? 1.0 : view.confidence[static_cast<std::size_t>(i)];
