@@ -197,6 +197,12 @@ StationDescription StationDescription::simulated() const {
   return sim;
 }
 
+StationDescription simulated_laser_station() {
+  StationDescription station;
+  station.lasers.assign(2, LaserRole{});
+  return station;
+}
+
 StationDescription simulated_stereo_station() {
   StationDescription station;
   station.name = "sim-stereo";

@@ -66,6 +66,14 @@ struct StationDescription {
   StationDescription simulated() const;
 };
 
+/// The built-in simulated laser station, what `--backend sim` and `demo` use
+/// without a description: one simulated camera, two line lasers (lines LASER0
+/// and LASER1 of the simulated chip, one on each side of the camera, as on
+/// the common desktop turntable scanners and in stations/sim.toml), the
+/// simulated turntable. Each laser lights the parts of the object the other
+/// one's stripe cannot show the camera.
+StationDescription simulated_laser_station();
+
 /// The built-in simulated stereo station: two simulated cameras, the
 /// projector on line PROJECTOR of the simulated chip, the simulated
 /// turntable, no laser.

@@ -45,7 +45,7 @@ class DemoCommand final : public Command {
 
   void run(CommandContext& context) override {
     io::check_writable(job_.folder / "object.ply", context.overwrite);
-    job_.station = drivers::StationDescription{};  // the built-in simulated station
+    job_.station = drivers::simulated_laser_station();
     const sim::ScanObject object = sim::scan_object(job_.object, sim::up_axis_rotation(job_.up));
     run_scan_job(context, job_);
     // A built-in object's true surface beside the results, to compare by eye

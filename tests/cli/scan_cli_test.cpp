@@ -195,11 +195,22 @@ TEST_F(ScannedSphere, StoppedScanResumesToTheSamePoints) {
   EXPECT_EQ(refused.exit_code, 1);
   EXPECT_THAT(refused.err, testing::HasSubstr("--resume"));
   // Other devices would record steps the manifest does not describe (the
-  // default station has one laser: laser1 frames in a one-laser session).
+  // built-in station's camera is 640×480: frames of another size).
   const Outcome other = scanstation("scan --resume --backend sim -o " + (dir / "s").string());
   EXPECT_EQ(other.exit_code, 1);
   EXPECT_THAT(other.err, testing::HasSubstr("recorded with other devices"));
   EXPECT_THAT(other.err, testing::HasSubstr("resume it with the station it was scanned with"));
+  EXPECT_THAT(other.err, testing::Not(testing::HasSubstr("built-in")));
+  {  // A session of a built-in station (no file) is told how to describe it.
+    ScratchFolder built_in;
+    fs::copy(dir / "s", built_in / "s", fs::copy_options::recursive);
+    json manifest = json::parse(slurp(built_in / "s" / "manifest.json"));
+    manifest["station"]["file"] = "";
+    std::ofstream(built_in / "s" / "manifest.json") << manifest.dump(1);
+    const Outcome told = scanstation("scan --resume --backend sim -o " + (built_in / "s").string());
+    EXPECT_EQ(told.exit_code, 1);
+    EXPECT_THAT(told.err, testing::HasSubstr("scanned with a built-in station of 2 laser(s): stations/sim.toml"));
+  }
   const Outcome second = scanstation("scan --resume --station " + station_.string() + " -o " + (dir / "s").string());
   ASSERT_EQ(second.exit_code, 0) << second.err;
   EXPECT_THAT(second.out, testing::HasSubstr("scanned " + std::to_string(kSteps)));
