@@ -93,6 +93,9 @@ TEST(LaserScan, SphereWithinTheAccuracyBudgetAndItsKnownArtefactCheck) {
   EXPECT_LT(agree.median_distance, budget);
   EXPECT_LT(agree.p90_distance, 4 * budget);
   EXPECT_GT(disagree.median_distance, 0.15);
+  // Signed, the offset keeps to one side of the surface; the true planes' does not.
+  EXPECT_LT(std::abs(agree.median_signed), 0.25 * budget);
+  EXPECT_GT(std::abs(disagree.median_signed), 0.15);
 }
 
 // The chalice: a deep concavity (laser shadows, occlusion by the rim) and

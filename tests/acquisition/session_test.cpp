@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "core/image_codecs.h"
 #include "core/io/mesh_io.h"
+#include "sim/scan_objects.h"
 #include "sim/simulated_turntable.h"
 #include "sim/surface_of_revolution.h"
 #include "profile_distance.h"
@@ -38,9 +39,10 @@ struct SimStation {
   sim::SimulatedTurntable simulated;
   std::unique_ptr<sim::OpenStation> station;
 
-  explicit SimStation(const std::string& object, drivers::PixelFormat format = drivers::PixelFormat::grey)
+  explicit SimStation(const std::string& object, drivers::PixelFormat format = drivers::PixelFormat::grey,
+                      const Eigen::Matrix3d& up = Eigen::Matrix3d::Identity())
       : description(small_station(format)),
-        simulated(sim::simulated_turntable(sim::scan_object(object), description)),
+        simulated(sim::simulated_turntable(sim::scan_object(object, up), description)),
         station(sim::open_station(description, sim::camera_role | sim::laser_role | sim::turntable_role,
                                   simulated.frames)) {}
 
@@ -66,8 +68,9 @@ struct SimStation {
 // Records `steps` steps of `object` into `folder` (stopping after
 // `stop_after` when > 0), then processes the session into its points.ply.
 RecordingOutcome scan(const fs::path& folder, const std::string& object, int steps, int stop_after = 0,
-                      drivers::PixelFormat format = drivers::PixelFormat::grey) {
-  SimStation sim(object, format);
+                      drivers::PixelFormat format = drivers::PixelFormat::grey,
+                      const Eigen::Matrix3d& up = Eigen::Matrix3d::Identity()) {
+  SimStation sim(object, format, up);
   SessionRecorder recorder = SessionRecorder::create(folder, sim.manifest(steps), io::Overwrite::refuse);
   auto devices = sim.devices();
   return record_turntable_session(devices, recorder, {}, stop_after);
@@ -524,6 +527,45 @@ TEST(Session, LaserAgreementFlagsAShiftedPlaneAtTheDefaultSteps) {
   ASSERT_TRUE(laser_agreement_warning(wrong));
   EXPECT_THAT(*laser_agreement_warning(wrong), testing::HasSubstr("two shifted copies"));
   EXPECT_THAT(*laser_agreement_warning(wrong), testing::HasSubstr("scanstation calibrate laser"));
+}
+
+// A CAD part, CGAL's cross (sharp edges, thin arms), at the default 36
+// steps: each laser's points lie off the other's fitted surface across the
+// edges by more than the limit (the one-way median alone flagged the true
+// planes), but to the same side both ways; the offset measured both ways
+// stays near 0 for the true planes and follows a plane moved either way.
+TEST(Session, LaserAgreementTellsAnOffsetFromTheFitsErrorOnADetailedObject) {
+  test::ScratchFolder folder;
+  ASSERT_TRUE(scan(folder / "s", test::cgal_data("meshes/cross.off").string(), 36, 0, drivers::PixelFormat::grey,
+                   sim::up_axis_rotation("y"))
+                  .complete);
+  const SessionContents contents = read_session(folder / "s");
+  const ScanResult truth = replay_session(contents);
+  ASSERT_TRUE(truth.laser_agreement);
+  const LaserAgreementCheck& agree = *truth.laser_agreement;
+  ASSERT_TRUE(agree.checked) << agree.reason;
+  std::printf("cross at 36 steps: one-way median %.4f, offset %+.4f, fit bias %+.4f (limit %.4f)\n",
+              agree.agreement.median_distance, agree.offset, agree.fit_bias, agree.limit);
+  EXPECT_GT(agree.agreement.median_distance, agree.limit);  // what the one-way check flagged
+  EXPECT_LT(std::abs(agree.offset), 0.25 * agree.limit);
+  EXPECT_TRUE(agree.agree);
+  EXPECT_FALSE(laser_agreement_warning(truth));
+  double offset[2];
+  for (const int side : {0, 1}) {
+    ReplayOptions shifted;
+    shifted.geometry = contents.manifest.geometry;
+    shifted.geometry->lasers[1].origin += (side ? -0.3 : 0.3) * shifted.geometry->lasers[1].normal;
+    const ScanResult wrong = replay_session(contents, shifted);
+    ASSERT_TRUE(wrong.laser_agreement);
+    const LaserAgreementCheck& disagree = *wrong.laser_agreement;
+    std::printf("  laser 1's plane %+.1f mm along its normal: offset %+.4f, fit bias %+.4f (resolution %.4f)\n",
+                side ? -0.3 : 0.3, disagree.offset, disagree.fit_bias, disagree.resolution);
+    EXPECT_TRUE(disagree.checked) << disagree.reason;
+    EXPECT_FALSE(disagree.agree);
+    EXPECT_TRUE(laser_agreement_warning(wrong));
+    offset[side] = disagree.offset;
+  }
+  EXPECT_LT(offset[0] * offset[1], 0.0);  // the plane's two ways give the two sides
 }
 
 // Eight steps put each laser's stripes 45° apart: too far for a local surface
