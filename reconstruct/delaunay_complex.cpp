@@ -250,8 +250,9 @@ DelaunayComplex<3> delaunay_complex(const Eigen::MatrixX3d& P, std::vector<Eigen
     insert_in_spatial_order(dt, input, [](int, Delaunay3::Vertex_handle) {});
     std::vector<std::pair<Kernel::Point_3, int>>().swap(input);  // the copy below is the memory peak
     if (dt.dimension() < 3)
-      throw InvalidInput(std::string("all points lie ") + (dt.dimension() < 2 ? "on one line" : "in one plane") +
-                         ": no polyhedron encloses them");
+      throw InvalidInput(dt.dimension() < 2 ? std::string("all points lie on one line: no polyhedron encloses them")
+                                            : std::string("all points lie in one plane: no polyhedron encloses them (give "
+                                                          "them with two coordinates, x y, for a closed polygon)"));
 
     // Points in CGAL's vertex storage order (see the 2D version).
     out.points.resize(static_cast<Eigen::Index>(dt.number_of_vertices()), 3);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <type_traits>
 
 namespace scanstation::app {
 
@@ -207,7 +208,7 @@ class ReconstructCommand final : public Command {
         throw InvalidInput(std::string(option) + " is a 3D stage; the input has two coordinates");
       if (svg_ && io::resolve_format(*svg_, std::nullopt) != io::FileFormat::svg)
         throw InvalidInput("--svg " + svg_->string() + ": expected a file name ending in .svg");
-      const CurveReconstruction r = reconstruct_curve(cloud.positions.leftCols(2), options_);
+      const CurveReconstruction r = of_input([&] { return reconstruct_curve(cloud.positions.leftCols(2), options_); });
       context.progress.finish();
       record_times(context, r.statistics);
       StageTimer write_timer(context.report, "write");
@@ -226,7 +227,7 @@ class ReconstructCommand final : public Command {
     } else {
       if (svg_) throw InvalidInput("--svg draws 2D results; the input has three coordinates");
       add_sight_lines(cloud.positions, context);
-      const SurfaceReconstruction r = reconstruct_surface(cloud.positions, options_);
+      const SurfaceReconstruction r = of_input([&] { return reconstruct_surface(cloud.positions, options_); });
       context.progress.finish();
       record_times(context, r.statistics);
       StageTimer write_timer(context.report, "write");
@@ -253,6 +254,19 @@ class ReconstructCommand final : public Command {
   }
 
  private:
+  // What the points cannot give (too few, all in one plane) is said of the
+  // input file, as a reading error is.
+  template <typename Reconstruct>
+  std::invoke_result_t<Reconstruct&> of_input(Reconstruct&& reconstruct) const {
+    try {
+      return reconstruct();
+    } catch (const FormatError&) {
+      throw;
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(input_.string() + ": " + e.what());
+    }
+  }
+
   void write_interior_2d(const CurveReconstruction& r, const io::WriteOptions& write) const {
     Eigen::MatrixX3d points = Eigen::MatrixX3d::Zero(r.points.rows(), 3);
     points.leftCols(2) = r.points;

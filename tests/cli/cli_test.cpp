@@ -321,6 +321,19 @@ TEST(Cli, ReconstructsRealMeshVerticesAndPlanarPoints) {
   EXPECT_EQ(report["result"]["boundary"]["vertices"], 11);
   EXPECT_EQ(report["result"]["interior_vertices"], nlohmann::json::array({8}));  // input rows, not internal numbers
   EXPECT_THAT(slurp(dir / "l.xy"), testing::Not(testing::HasSubstr("0.542 0.516")));
+  // Points that enclose nothing are bad input of the file that holds them:
+  // CGAL's circles (3D, all in z = 0), three points, a 2D line.
+  std::ofstream(dir / "three.xyz") << "0 0 0\n1 0 0\n0 1 1\n";
+  std::ofstream(dir / "line.xy") << "0 0\n1 1\n2 2\n3 3\n";
+  for (const auto& [input, expected] :
+       {std::pair{test::cgal_data("points_3/circles.ply"), std::string("all points lie in one plane: no polyhedron encloses "
+                                                                        "them (give them with two coordinates, x y")},
+        std::pair{dir / "three.xyz", std::string("need at least 4 distinct points for a closed polyhedron, got 3")},
+        std::pair{dir / "line.xy", std::string("all points lie on one line: no polygon encloses them")}}) {
+    r = scanstation("reconstruct " + path(input) + " -o " + path(dir / (input.extension() == ".xy" ? "none.xy" : "none.ply")));
+    EXPECT_EQ(r.exit_code, 1) << input;
+    EXPECT_THAT(r.err, testing::HasSubstr(input.string() + ": " + expected));
+  }
 }
 
 // Viewpoints: each point of a dumbbell seen from straight outside its own
