@@ -10,6 +10,7 @@
 #include "sim/simulated_stereo.h"
 #include "sim/simulated_turntable.h"
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 
@@ -245,6 +246,16 @@ void print_results(const nlohmann::json& r) {
   if (const long long thinned = r.value("points_thinned", 0LL); thinned > 0)
     std::printf("%lld points nearer than %g mm to a point kept before were dropped (--min-spacing)\n", thinned,
                 r["parameters"]["min_spacing"].get<double>());
+  // Two lasers: their agreement, when it holds or could not be told (a
+  // disagreement is a warning of its own).
+  if (const nlohmann::json& l = r.value("laser_agreement", nlohmann::json()); l.is_object()) {
+    if (!l["checked"].get<bool>())
+      std::printf("lasers 0 and 1 not compared: %s\n", l.value("reason", std::string()).c_str());
+    else if (l["agree"].get<bool>())
+      std::printf("lasers 0 and 1 agree: laser 0's cloud lies %.2g mm %s laser 1's (limit %.2g mm)\n",
+                  std::abs(l["offset"].get<double>()), l["offset"].get<double>() > 0 ? "outside" : "inside",
+                  l["resolution"].get<double>());
+  }
   const nlohmann::json& b = r["boundary"];
   if (b.contains("error")) {
     std::printf("no boundary: %s\n", b["error"].get<std::string>().c_str());

@@ -118,6 +118,7 @@ TEST(ScanWithCalibration, CalibratedSphereWithinTheBudgetAndBadCalibrationsRefus
     // The default 36 steps: the lasers' agreement is checked, and calibrated planes agree.
     EXPECT_TRUE(report["laser_agreement"]["checked"].get<bool>()) << report["laser_agreement"];
     EXPECT_TRUE(report["laser_agreement"]["agree"].get<bool>()) << report["laser_agreement"];
+    EXPECT_THAT(scan.out, testing::HasSubstr("lasers 0 and 1 agree: laser 0's cloud lies "));
   }
   {
     SCOPED_TRACE("the station description names its calibration");
