@@ -20,6 +20,22 @@ class PointGrid {
   /// Indices of the points within `cell` of p.
   std::vector<Eigen::Index> within(const Eigen::Vector3d& p) const {
     std::vector<Eigen::Index> found;
+    visit_within(p, [&](Eigen::Index i) {
+      found.push_back(i);
+      return false;
+    });
+    return found;
+  }
+  /// Whether a point lies within `cell` of p.
+  bool any_within(const Eigen::Vector3d& p) const {
+    return visit_within(p, [](Eigen::Index) { return true; });
+  }
+
+ private:
+  // Calls visit(i) for the points within `cell` of p until it returns true;
+  // returns whether it did.
+  template <typename Visit>
+  bool visit_within(const Eigen::Vector3d& p, Visit&& visit) const {
     const Eigen::Vector3i c = cell_of(p);
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
@@ -27,12 +43,11 @@ class PointGrid {
           const auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
           if (it == cells_.end()) continue;
           for (const Eigen::Index i : it->second)
-            if ((points_.row(i).transpose() - p).squaredNorm() <= cell_ * cell_) found.push_back(i);
+            if ((points_.row(i).transpose() - p).squaredNorm() <= cell_ * cell_ && visit(i)) return true;
         }
-    return found;
+    return false;
   }
 
- private:
   Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const { return (p / cell_).array().floor().cast<int>(); }
   static std::uint64_t key(const Eigen::Vector3i& c) {
     const auto u = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v)); };

@@ -48,7 +48,7 @@ double coverage(const Eigen::MatrixX3d& surface_samples, const Eigen::MatrixX3d&
   if (surface_samples.rows() == 0) return 0.0;
   const PointGrid grid(scanned, radius);
   Eigen::Index covered = 0;
-  for (Eigen::Index s = 0; s < surface_samples.rows(); ++s) covered += !grid.within(surface_samples.row(s)).empty();
+  for (Eigen::Index s = 0; s < surface_samples.rows(); ++s) covered += grid.any_within(surface_samples.row(s));
   return static_cast<double>(covered) / static_cast<double>(surface_samples.rows());
 }
 

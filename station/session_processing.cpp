@@ -1,5 +1,6 @@
 #include "station/session_processing.h"
 
+#include "acquisition/point_grid.h"
 #include "core/describe.h"
 #include "core/errors.h"
 #include "core/io/file_access.h"
@@ -12,7 +13,11 @@
 #include "smoothing/tessellation.h"
 #include "smoothing/tessellation_density.h"
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <numbers>
 
 namespace scanstation::station {
@@ -21,6 +26,42 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+// The median length of a mesh's edges (each face's three, so an edge is
+// counted twice on a closed mesh, which leaves the median).
+double median_edge_length(const TriangleMesh& mesh) {
+  std::vector<double> length;
+  length.reserve(static_cast<std::size_t>(3 * mesh.face_count()));
+  const auto& V = mesh.vertices.positions;
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
+    for (int k = 0; k < 3; ++k) length.push_back((V.row(mesh.faces(f, k)) - V.row(mesh.faces(f, (k + 1) % 3))).norm());
+  if (length.empty()) return 0.0;
+  std::nth_element(length.begin(), length.begin() + static_cast<std::ptrdiff_t>(length.size() / 2), length.end());
+  return length[length.size() / 2];
+}
+
+// The share of a surface's area whose faces have a scanned point within the
+// grid's reach of their centroid.
+double seen_area_share(const TriangleMesh& surface, const acquisition::PointGrid& near_points) {
+  const auto& V = surface.vertices.positions;
+  double seen = 0, all = 0;
+  for (Eigen::Index f = 0; f < surface.face_count(); ++f) {
+    const Eigen::Vector3d a = V.row(surface.faces(f, 0)), b = V.row(surface.faces(f, 1)), c = V.row(surface.faces(f, 2));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    all += area;
+    if (near_points.any_within((a + b + c) / 3.0)) seen += area;
+  }
+  return all > 0 ? seen / all : 0.0;
+}
+
+// The entries of `d` whose sample has a scanned point within the grid's reach.
+Eigen::VectorXd seen_entries(const Eigen::VectorXd& d, const Eigen::MatrixX3d& samples,
+                             const acquisition::PointGrid& near_points) {
+  std::vector<double> seen;
+  for (Eigen::Index i = 0; i < samples.rows(); ++i)
+    if (near_points.any_within(samples.row(i))) seen.push_back(d(i));
+  return Eigen::Map<const Eigen::VectorXd>(seen.data(), static_cast<Eigen::Index>(seen.size()));
+}
 
 class Stopwatch {
  public:
@@ -288,21 +329,30 @@ json process_session(const acquisition::SessionContents& session, const fs::path
       const double diagonal = (T.colwise().maxCoeff() - T.colwise().minCoeff()).norm();
       const SurfaceDistance to_truth(truth);
       const Eigen::MatrixX3d truth_samples = surface_samples(truth, kSamples);
-      const SurfaceDeviation to_mesh = surface_deviation(mesh, to_truth, truth_samples, kSamples);
-      json accuracy = {
-          {"truth_diagonal", diagonal},
-          {"points", to_json(summarize_distances(to_truth(result.points.cloud.positions)), diagonal)},
-          {"mesh", {{"to_truth", to_json(to_mesh.to_truth, diagonal)},
-                    {"from_truth", to_json(to_mesh.from_truth, diagonal)},
-                    {"hausdorff", to_mesh.hausdorff()},
-                    {"hausdorff_of_diagonal", to_mesh.hausdorff() / diagonal}}}};
-      if (coarse) {
-        const SurfaceDeviation to_smooth = surface_deviation(*coarse, to_truth, truth_samples, kSamples);
-        accuracy["smooth"] = {{"to_truth", to_json(to_smooth.to_truth, diagonal)},
-                              {"from_truth", to_json(to_smooth.from_truth, diagonal)},
-                              {"hausdorff", to_smooth.hausdorff()},
-                              {"hausdorff_of_diagonal", to_smooth.hausdorff() / diagonal}};
-      }
+      // Where the scanner saw the object: within `reach` of a point. The rest
+      // (the underside on the platter, what no stripe lit) the boundary only
+      // closes over, so its distance there says nothing of the scan.
+      const Eigen::MatrixX3d& P = result.points.cloud.positions;
+      const double reach = 1.5 * median_edge_length(mesh);
+      const acquisition::PointGrid near_points(P, reach > 0 ? reach : 1.0);
+      const auto deviation_json = [&](const TriangleMesh& surface, json& whole, json& seen) {
+        const Eigen::MatrixX3d samples = surface_samples(surface, kSamples);
+        const Eigen::VectorXd to = to_truth(samples), from = SurfaceDistance(surface)(truth_samples);
+        const SurfaceDeviation all{summarize_distances(to), summarize_distances(from)};
+        const SurfaceDeviation near{summarize_distances(seen_entries(to, samples, near_points)),
+                                    summarize_distances(seen_entries(from, truth_samples, near_points))};
+        whole = {{"to_truth", to_json(all.to_truth, diagonal)},
+                 {"from_truth", to_json(all.from_truth, diagonal)},
+                 {"hausdorff", all.hausdorff()},
+                 {"hausdorff_of_diagonal", all.hausdorff() / diagonal}};
+        seen = {{"to_truth", to_json(near.to_truth, diagonal)},
+                {"from_truth", to_json(near.from_truth, diagonal)},
+                {"hausdorff", near.hausdorff()}};
+      };
+      json accuracy = {{"truth_diagonal", diagonal}, {"points", to_json(summarize_distances(to_truth(P)), diagonal)}};
+      accuracy["seen"] = {{"reach", reach}, {"coverage", seen_area_share(truth, near_points)}};
+      deviation_json(mesh, accuracy["mesh"], accuracy["seen"]["mesh"]);
+      if (coarse) deviation_json(*coarse, accuracy["smooth"], accuracy["seen"]["smooth"]);
       report["accuracy"] = accuracy;
       seconds["accuracy"] = watch.lap();
     }

@@ -288,6 +288,14 @@ void print_results(const nlohmann::json& r) {
     std::printf("against the true surface: points RMS %.3g (%.3f%% of the diagonal), mesh Hausdorff %.3g\n",
                 a["points"]["rms"].get<double>(), 100 * a["points"]["rms_of_diagonal"].get<double>(),
                 a["mesh"]["hausdorff"].get<double>());
+    if (a.contains("seen")) {
+      const nlohmann::json& seen = a["seen"];
+      std::printf("  where the scan saw it (%.1f%% of the surface's area within %.3g of a point): mesh Hausdorff %.3g",
+                  100 * seen["coverage"].get<double>(), seen["reach"].get<double>(),
+                  seen["mesh"]["hausdorff"].get<double>());
+      if (seen.contains("smooth")) std::printf(", smooth surface %.3g", seen["smooth"]["hausdorff"].get<double>());
+      std::printf("\n");
+    }
   }
   for (const auto& [name, path] : r["outputs"].items()) std::printf("  %-8s %s\n", name.c_str(), path.get<std::string>().c_str());
 }

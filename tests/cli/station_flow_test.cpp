@@ -5,8 +5,10 @@
 #include "cli_support.h"
 #include "core/io/mesh_io.h"
 #include "core/mesh_topology.h"
+#include "sim/scan_objects.h"
 #include "test_support.h"
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 namespace scanstation {
@@ -52,6 +54,30 @@ TEST_P(StationFlow, ClosedGenusZeroThroughAllPointsNearTheTruthAndReplayedByteFo
   // (tests/acquisition); at this half resolution twice that.
   EXPECT_LE(points, 1e-3);
   EXPECT_LE(to_truth, c.mesh_rms_of_diagonal);
+  // Where the scan saw the object: the share of the true surface's area
+  // with a point within reach of its faces' centroids, counted here by brute
+  // force, and the distances there no larger than over the whole.
+  const json& seen = accuracy["seen"];
+  const double reach = seen["reach"];
+  const TriangleMesh truth = sim::scan_object(c.object).on_platter;
+  const Eigen::MatrixX3d P = io::read_points(dir / "s" / "points.ply").positions;
+  double seen_area = 0, area = 0;
+  for (Eigen::Index f = 0; f < truth.face_count(); ++f) {
+    const auto& V = truth.vertices.positions;
+    const Eigen::Vector3d a = V.row(truth.faces(f, 0)), b = V.row(truth.faces(f, 1)), d = V.row(truth.faces(f, 2));
+    const double face_area = 0.5 * (b - a).cross(d - a).norm();
+    area += face_area;
+    if (((P.rowwise() - ((a + b + d) / 3.0).transpose()).rowwise().squaredNorm().array() <= reach * reach).any())
+      seen_area += face_area;
+  }
+  std::printf("%s: seen %.1f%% of the area within %.2f; Hausdorff there %.2f (mesh), %.2f (smooth)\n", c.object,
+              100 * seen["coverage"].get<double>(), reach, seen["mesh"]["hausdorff"].get<double>(),
+              seen["smooth"]["hausdorff"].get<double>());
+  EXPECT_NEAR(seen["coverage"].get<double>(), seen_area / area, 1e-9);
+  EXPECT_GT(seen["coverage"].get<double>(), 0.5);
+  EXPECT_LT(seen["coverage"].get<double>(), 1.0);  // the underside stands on the platter
+  EXPECT_LE(seen["mesh"]["hausdorff"].get<double>(), accuracy["mesh"]["hausdorff"].get<double>());
+  EXPECT_LE(seen["smooth"]["hausdorff"].get<double>(), accuracy["smooth"]["hausdorff"].get<double>());
   // The smooth surface does not bulge: Step 5 moves its control points at
   // most a quarter of a macro edge length on scanned boundaries (the
   // surface's distance from the mesh, per local edge length, adds the
