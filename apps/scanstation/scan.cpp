@@ -4,6 +4,7 @@
 #include "command.h"
 #include "acquisition/session.h"
 #include "core/errors.h"
+#include "drivers/station_description.h"
 #include "scan_job.h"
 #include "scan_parameter_options.h"
 #include "station_options.h"
@@ -72,6 +73,14 @@ class ScanCommand final : public Command {
     // Without --station the built-in simulated station of the rig.
     job_.station = job_.rig == "stereo" && station_.station.empty() ? drivers::simulated_stereo_station()
                                                                     : station_.description();
+    // A session of the built-in laser station resumes with the lasers it was
+    // scanned with: the built-in station had one before it had two.
+    if (job_.resume && station_.station.empty() && job_.rig != "stereo") {
+      const nlohmann::json recorded = acquisition::read_session(job_.folder).manifest.station;
+      const nlohmann::json lasers = recorded.value("/fingerprint/devices/lasers"_json_pointer, nlohmann::json());
+      if (recorded.value("file", std::string()).empty() && lasers.is_array() && !lasers.empty())
+        job_.station.lasers.assign(lasers.size(), drivers::LaserRole{});
+    }
     job_.steps_given = cli_->count("--steps") > 0;
     job_.object_given = cli_->count("--object") > 0;
     job_.up_given = cli_->count("--up") > 0;

@@ -37,19 +37,10 @@ SessionRecorder resume_session(CommandContext& context, const ScanJob& job) {
   // the manifest does not describe: laser1 frames in a one-laser session.
   const nlohmann::json* recorded = m.station.contains("fingerprint") ? &m.station["fingerprint"] : nullptr;
   const acquisition::StationFingerprint now = acquisition::station_fingerprint(job.station);
-  if (recorded && recorded->value("hash", "") != now.hash) {
-    const nlohmann::json devices = recorded->value("devices", nlohmann::json::object());
-    // The built-in station had one laser before it had two: such a session
-    // resumes with a description of the station it was scanned with.
-    const std::string built_in =
-        m.station.value("file", std::string()).empty() && devices.contains("lasers")
-            ? " (it was scanned with a built-in station of " + std::to_string(devices["lasers"].size()) +
-                  " laser(s): stations/sim.toml with as many [[laser]] tables describes it)"
-            : "";
+  if (recorded && recorded->value("hash", "") != now.hash)
     throw InvalidInput(job.folder.string() + ": the session was recorded with other devices than station '" + now.name +
-                       "' (" + devices.dump() + " against " + now.devices.dump() +
-                       "); resume it with the station it was scanned with (--station)" + built_in);
-  }
+                       "' (" + recorded->value("devices", nlohmann::json::object()).dump() + " against " +
+                       now.devices.dump() + "); resume it with the station it was scanned with (--station)");
   if (job.parameters_given) context.log->warn("--resume keeps the session's parameters; replay to change them");
   return recorder;
 }
