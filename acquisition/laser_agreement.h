@@ -30,8 +30,9 @@ struct LaserAgreement {
 ///         of B's stripes on the object
 LaserAgreement laser_agreement(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, double radius);
 
-/// Two lasers disagree when the median distance between their clouds exceeds
-/// this fraction of the scan's bounding-box diagonal: twice the accuracy
+/// Two lasers disagree when the offset between their clouds (measured both
+/// ways, see LaserAgreementCheck) exceeds this fraction of the scan's
+/// bounding-box diagonal: twice the accuracy
 /// budget (0.05% of the diagonal), which laser planes true to the rig stay
 /// well within, while a plane 0.3 mm off on a 60 mm object exceeds it.
 inline constexpr double kLaserAgreementLimit = 1e-3;

@@ -4,6 +4,7 @@
 #include "core/errors.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,20 @@ double coverage(const Eigen::MatrixX3d& surface_samples, const Eigen::MatrixX3d&
   Eigen::Index covered = 0;
   for (Eigen::Index s = 0; s < surface_samples.rows(); ++s) covered += grid.any_within(surface_samples.row(s));
   return static_cast<double>(covered) / static_cast<double>(surface_samples.rows());
+}
+
+double area_coverage(const TriangleMesh& surface, const Eigen::MatrixX3d& scanned, double radius) {
+  if (!(radius > 0)) throw InvalidInput("coverage: the radius must be positive");
+  const PointGrid grid(scanned, radius);
+  const auto& V = surface.vertices.positions;
+  double seen = 0, all = 0;
+  for (Eigen::Index f = 0; f < surface.face_count(); ++f) {
+    const Eigen::Vector3d a = V.row(surface.faces(f, 0)), b = V.row(surface.faces(f, 1)), c = V.row(surface.faces(f, 2));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    all += area;
+    if (grid.any_within((a + b + c) / 3.0)) seen += area;
+  }
+  return all > 0 ? seen / all : 0.0;
 }
 
 }  // namespace scanstation::acquisition

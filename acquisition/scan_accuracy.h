@@ -2,6 +2,8 @@
 // (a sphere) and the coverage of a true surface.
 #pragma once
 
+#include "core/triangle_mesh.h"
+
 #include <Eigen/Core>
 
 namespace scanstation::acquisition {
@@ -21,5 +23,10 @@ SphereFit fit_sphere(const Eigen::MatrixX3d& points);
 /// Fraction of `surface_samples` (points spread uniformly over the true
 /// surface) that have a scanned point within `radius`.
 double coverage(const Eigen::MatrixX3d& surface_samples, const Eigen::MatrixX3d& scanned, double radius);
+
+/// The same by area: the share of `surface`'s area whose faces have a
+/// scanned point within `radius` of their centroid (a mesh's vertices and
+/// centroids are not spread evenly over its area).
+double area_coverage(const TriangleMesh& surface, const Eigen::MatrixX3d& scanned, double radius);
 
 }  // namespace scanstation::acquisition

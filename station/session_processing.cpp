@@ -1,6 +1,7 @@
 #include "station/session_processing.h"
 
 #include "acquisition/point_grid.h"
+#include "acquisition/scan_accuracy.h"
 #include "core/describe.h"
 #include "core/errors.h"
 #include "core/io/file_access.h"
@@ -12,8 +13,6 @@
 #include "smoothing/shaded_preview.h"
 #include "smoothing/tessellation.h"
 #include "smoothing/tessellation_density.h"
-
-#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
@@ -38,20 +37,6 @@ double median_edge_length(const TriangleMesh& mesh) {
   if (length.empty()) return 0.0;
   std::nth_element(length.begin(), length.begin() + static_cast<std::ptrdiff_t>(length.size() / 2), length.end());
   return length[length.size() / 2];
-}
-
-// The share of a surface's area whose faces have a scanned point within the
-// grid's reach of their centroid.
-double seen_area_share(const TriangleMesh& surface, const acquisition::PointGrid& near_points) {
-  const auto& V = surface.vertices.positions;
-  double seen = 0, all = 0;
-  for (Eigen::Index f = 0; f < surface.face_count(); ++f) {
-    const Eigen::Vector3d a = V.row(surface.faces(f, 0)), b = V.row(surface.faces(f, 1)), c = V.row(surface.faces(f, 2));
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    all += area;
-    if (near_points.any_within((a + b + c) / 3.0)) seen += area;
-  }
-  return all > 0 ? seen / all : 0.0;
 }
 
 // The entries of `d` whose sample has a scanned point within the grid's reach.
@@ -333,8 +318,8 @@ json process_session(const acquisition::SessionContents& session, const fs::path
       // (the underside on the platter, what no stripe lit) the boundary only
       // closes over, so its distance there says nothing of the scan.
       const Eigen::MatrixX3d& P = result.points.cloud.positions;
-      const double reach = 1.5 * median_edge_length(mesh);
-      const acquisition::PointGrid near_points(P, reach > 0 ? reach : 1.0);
+      const double reach = 1.5 * median_edge_length(mesh);  // > 0: the boundary's corners are distinct points
+      const acquisition::PointGrid near_points(P, reach);
       const auto deviation_json = [&](const TriangleMesh& surface, json& whole, json& seen) {
         const Eigen::MatrixX3d samples = surface_samples(surface, kSamples);
         const Eigen::VectorXd to = to_truth(samples), from = SurfaceDistance(surface)(truth_samples);
@@ -350,7 +335,7 @@ json process_session(const acquisition::SessionContents& session, const fs::path
                 {"hausdorff", near.hausdorff()}};
       };
       json accuracy = {{"truth_diagonal", diagonal}, {"points", to_json(summarize_distances(to_truth(P)), diagonal)}};
-      accuracy["seen"] = {{"reach", reach}, {"coverage", seen_area_share(truth, near_points)}};
+      accuracy["seen"] = {{"reach", reach}, {"coverage", acquisition::area_coverage(truth, P, reach)}};
       deviation_json(mesh, accuracy["mesh"], accuracy["seen"]["mesh"]);
       if (coarse) deviation_json(*coarse, accuracy["smooth"], accuracy["seen"]["smooth"]);
       report["accuracy"] = accuracy;

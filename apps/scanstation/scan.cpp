@@ -9,6 +9,8 @@
 #include "scan_parameter_options.h"
 #include "station_options.h"
 
+#include <optional>
+
 namespace scanstation::app {
 
 namespace {
@@ -63,7 +65,9 @@ class ScanCommand final : public Command {
   void run(CommandContext& context) override {
     // A resumed scan continues with the session's own rig.
     job_.rig_given = cli_->count("--rig") > 0;
-    job_.rig = job_.resume && !job_.rig_given ? acquisition::read_session(job_.folder).manifest.rig : rig_;
+    const std::optional<acquisition::SessionManifest> resumed =
+        job_.resume ? std::optional(acquisition::read_session(job_.folder).manifest) : std::nullopt;
+    job_.rig = resumed && !job_.rig_given ? resumed->rig : rig_;
     if (job_.rig == "stereo" && parameters_.any())
       throw InvalidInput("--rig stereo: the laser processing options (--peak-fit, --row-step, ...) do not apply");
     if (job_.rig != "stereo" && !stereo_.given().empty())
@@ -75,8 +79,8 @@ class ScanCommand final : public Command {
                                                                     : station_.description();
     // A session of the built-in laser station resumes with the lasers it was
     // scanned with: the built-in station had one before it had two.
-    if (job_.resume && station_.station.empty() && job_.rig != "stereo") {
-      const nlohmann::json recorded = acquisition::read_session(job_.folder).manifest.station;
+    if (resumed && station_.station.empty() && job_.rig != "stereo") {
+      const nlohmann::json& recorded = resumed->station;
       const nlohmann::json lasers = recorded.value("/fingerprint/devices/lasers"_json_pointer, nlohmann::json());
       if (recorded.value("file", std::string()).empty() && lasers.is_array() && !lasers.empty())
         job_.station.lasers.assign(lasers.size(), drivers::LaserRole{});
