@@ -3,12 +3,14 @@
 // can miss a fold narrower than its spacing.
 //
 //   build/bench/g1_audit [--samples S] [--scheme six-split|three-split|adaptive-two-split]
-//                        [--tension T] [--max-move M] [--fitted K] [--flip-turned-faces]
+//                        [--tension T] [--max-move M] [--fitted K] [--jet K] [--flip-turned-faces]
 //                        MESH.off|MESH.ply ...
 //
 // Each mesh is smoothed (by default with the six-split) as `scanstation smooth`
 // does (area-weighted normals, or with --fitted K the station flow's planes
-// fitted to K neighbours; --max-move and --flip-turned-faces as `smooth`),
+// fitted to K neighbours; --jet K the vertices moved onto jets fitted to K
+// neighbours, as `smooth --positions fitted`; --max-move and
+// --flip-turned-faces as `smooth`),
 // then verified at 7 and at S (default 4095) samples per patch edge. One
 // row per mesh:
 // macro edges joined approximately (dependent), vertices where the sign
@@ -94,6 +96,8 @@ int run(int argc, char** argv) {
       options.flip_turned_faces = true;
     else if (arg == "--fitted")
       options.fitted_neighbours = std::stoi(value());
+    else if (arg == "--jet")
+      options.jet_neighbours = std::stoi(value());
     else if (!arg.empty() && arg[0] == '-')
       throw std::invalid_argument("unknown option " + arg);
     else
@@ -106,7 +110,7 @@ int run(int argc, char** argv) {
     const TriangleMesh mesh = io::read_mesh(file);
     const SurfaceSmoothing smoothing = smooth_surface(mesh, options);
     const G1Verification dense = verify_g1(smoothing.surface, samples);
-    const std::size_t turned = turned_triangles(smoothing.surface, mesh.vertices.positions, smoothing.faces);
+    const std::size_t turned = turned_triangles(smoothing.surface, smoothing.positions, smoothing.faces);
     std::printf("%-28s %9lld %6zu %5zu %7.3f %6zu %6zu %10.3g %10.3g %10.3g %10.3g\n",
                 std::filesystem::path(file).filename().string().c_str(), static_cast<long long>(mesh.faces.rows()),
                 smoothing.surface.dependent_edges.size(), smoothing.sign_condition_violations,

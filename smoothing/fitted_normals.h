@@ -29,4 +29,9 @@ namespace scanstation {
 /// out of range.
 Eigen::MatrixX3d fitted_vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int neighbours = 16);
 
+class SameSideNeighbours;
+/// The same with the neighbourhoods already indexed (same_side_neighbours.h);
+/// neighbours is not checked.
+Eigen::MatrixX3d fitted_vertex_normals(const Eigen::MatrixX3d& V, const SameSideNeighbours& around, int neighbours);
+
 }  // namespace scanstation

@@ -273,6 +273,23 @@ bool folds(const Point* M, const Point* L, const Point* R) {
   return false;
 }
 
+// Whether the patch on one side of a macro half edge turns over between
+// its ends: its normal along the edge (M the edge row, L the next row, as in
+// folds) turns by π/2 or more from its normal at the vertex, which the
+// vertex's tangent plane fixes. Both sides can turn over together, their
+// tangent planes still agreeing — folds does not see that — when Step 5
+// moves the point towards the centre O across the macro edge: on a scanned
+// ellipsoid two nearly square pairs of triangles came out with normals
+// turned by 179° at their diagonals' midpoints, dimples in the picture.
+// Decided exactly, as folds; no call where the vertex's normal vanishes.
+bool turns_back(const Point* M, const Point* L) {
+  const Point along[3] = {M[1] - M[0], M[2] - M[1], M[3] - M[2]};
+  const Point here[3] = {L[0] - M[0], L[1] - M[1], L[2] - M[2]};
+  const Quartic n = cross_product(along, here);
+  if (n[0].isZero()) return false;
+  return reaches_zero(n, Quartic{n[0], n[0], n[0], n[0], n[0]});
+}
+
 // Step 5 for the macro edge c of this side s (the other side t, its edge,
 // runs the other way). `here` and `there` receive the moved points, each in
 // its own side's orientation. Returns false when the constraints were
@@ -442,20 +459,36 @@ bool join_macro_edge(const FaceSplit& s, int c, const FarSide& t, double max_mov
   // planes with normals turned by π, a spike in the picture: the damped
   // step takes over, with the largest move halved from half an edge length
   // until the fold is gone — not G¹ there, and counted.
-  const auto folded = [&] {
+  const auto folded = [&](bool or_turned) {
     const Point Ma[4] = {s.V[c], s.K[c], x[Ya], x[Z]}, La[3] = {s.N[c], x[Xa], x[Yf]},
                 Ra[3] = {t.N_end, x[Xa_there], x[Yg]};
     const Point Mb[4] = {s.V[n], s.Kn[c], x[Yb], x[Z]}, Lb[3] = {s.N[n], x[Xb], x[Yf]},
                 Rb[3] = {t.N_start, x[Xb_there], x[Yg]};
-    return folds(Ma, La, Ra) || folds(Mb, Lb, Rb);
+    return folds(Ma, La, Ra) || folds(Mb, Lb, Rb) || (or_turned && (turns_back(Ma, La) || turns_back(Mb, Lb)));
   };
-  if (folded()) {
+  const double length = (s.V[n] - s.V[c]).norm();
+  if (folded(false)) {
     met = false;
-    const double length = (s.V[n] - s.V[c]).norm();
     for (double bound = kFoldReach * length; bound >= kFoldReach * length / 64.0; bound /= 2.0) {
       damped(bound);
-      if (!folded()) break;
+      if (!folded(false)) break;
     }
+  } else if (std::isfinite(max_move) && folded(true)) {
+    // Turned over, not apart: with the moves bounded (a bulge is not
+    // wanted), the same damped steps, kept only where one mends it (else the
+    // exact join stands, G¹ if turned over). Unbounded, as the thesis, every
+    // G¹ join stands: on bunny00 0.3% of the patches along macro edges turn over so.
+    Point exact[unknowns];
+    std::copy(x, x + unknowns, exact);
+    bool mended = false;
+    for (double bound = kFoldReach * length; bound >= kFoldReach * length / 64.0 && !mended; bound /= 2.0) {
+      damped(bound);
+      mended = !folded(true);
+    }
+    if (mended)
+      met = false;
+    else
+      std::copy(exact, exact + unknowns, x);
   }
   here = {x[Z], x[Ya], x[Yb], x[Yf], x[Xa], x[Xb]};
   there = {x[Z], x[Yb], x[Ya], x[Yg], x[Xb_there], x[Xa_there]};

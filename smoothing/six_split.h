@@ -36,7 +36,11 @@ namespace scanstation {
 /// a damped least-squares step of bounded move instead: not G¹ there, and
 /// counted in dependent_edges too; so is an edge whose subdivided star at Z
 /// folds (made C¹ instead, φ = ψ = −½, which avoids the fold but is no G¹
-/// join). max_move = ∞ keeps every non-folding exact solution, as the thesis.
+/// join). With a finite max_move, an exact solution whose patches turn over
+/// between a vertex and Z (both sides together, the normal turned by π/2 or
+/// more from the vertex's) is joined by the damped step as well where one
+/// mends it. max_move = ∞ keeps every non-folding exact solution, as the
+/// thesis.
 /// Steps 6–7: Q at the vertex edges from Equation (9.13a), Q at the midpoint
 /// edges the mean of their neighbours (9.12a), O = (Q0 + Q2 + Q4)/3 — the
 /// domain ratios of the split, so the interior joins C¹.

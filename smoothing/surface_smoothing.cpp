@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "smoothing/cross_edge_directions.h"
 #include "smoothing/fitted_normals.h"
+#include "smoothing/jet_fitted_vertices.h"
 #include "smoothing/mesh_edges.h"
 #include "smoothing/sign_condition.h"
 #include "smoothing/six_split.h"
@@ -101,7 +102,7 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
   if (mesh.face_count() == 0) throw InvalidInput("no triangles; smoothing needs a closed mesh");
   const LocalFrame frame = local_frame(mesh.vertices.positions);
   const Eigen::MatrixX3d local = frame.identity() ? Eigen::MatrixX3d() : to_local(mesh.vertices.positions, frame);
-  const Eigen::MatrixX3d& V = frame.identity() ? mesh.vertices.positions : local;
+  const Eigen::MatrixX3d& given = frame.identity() ? mesh.vertices.positions : local;
   SurfaceSmoothing result;
   auto start = std::chrono::steady_clock::now();
   MeshEdges edges;  // first: a surface that is not one closed manifold has no meaningful normals either
@@ -111,12 +112,12 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
     throw InvalidInput(e.what());
   }
   if (options.given_normals) {
-    if (options.given_normals->rows() != V.rows())
+    if (options.given_normals->rows() != given.rows())
       throw InvalidInput("given normals: " + std::to_string(options.given_normals->rows()) + " rows for " +
-                         std::to_string(V.rows()) + " vertices");
+                         std::to_string(given.rows()) + " vertices");
     // A zero or non-finite normal gives no direction: Eigen would keep it,
     // and the sign condition would then make one up without a word.
-    for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    for (Eigen::Index v = 0; v < given.rows(); ++v) {
       const double length = options.given_normals->row(v).norm();
       if (!(length > 0.0) || !std::isfinite(length))
         throw InvalidInput("given normals: vertex " + std::to_string(v) + "'s normal (" +
@@ -125,12 +126,23 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
                            ") has no direction: expected a nonzero finite vector");
     }
   }
+  // The vertices the patches interpolate: the mesh's own, or with fitted
+  // positions those of the last fit (on the faces as they are then).
+  Eigen::MatrixX3d fitted;
+  const Eigen::MatrixX3d* positions = &given;
+  const Eigen::Index jet_count = std::min<Eigen::Index>(options.jet_neighbours, given.rows());
   const auto normals = [&](const Eigen::MatrixX3i& F) -> Eigen::MatrixX3d {
-    if (options.given_normals) return options.given_normals->rowwise().normalized();
-    if (options.fitted_neighbours > 0) {
-      const auto neighbours = std::min<Eigen::Index>(options.fitted_neighbours, V.rows());
-      return fitted_vertex_normals(V, F, static_cast<int>(neighbours));
+    if (jet_count >= 10) {
+      JetFittedVertices jets = jet_fitted_vertices(given, F, static_cast<int>(jet_count));
+      fitted = std::move(jets.positions);
+      positions = &fitted;
+      result.moved_vertices = std::move(jets.moved);
+      result.fit_noise = jets.noise * std::ldexp(1.0, frame.exponent);
     }
+    const Eigen::MatrixX3d& V = *positions;
+    if (options.given_normals) return options.given_normals->rowwise().normalized();
+    if (options.fitted_neighbours > 0)
+      return fitted_vertex_normals(V, F, static_cast<int>(std::min<Eigen::Index>(options.fitted_neighbours, V.rows())));
     return vertex_normals(V, F, options.normals);
   };
   result.faces = mesh.faces;
@@ -141,7 +153,7 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
     // their side from them), which can turn a few more: until none does, at
     // most four times (the chalice scan: 1260 faces, then 8, then none).
     for (int pass = 0; pass < 4; ++pass) {
-      const std::vector<int> flipped = flip_turned_faces(V, result.faces, N);
+      const std::vector<int> flipped = flip_turned_faces(*positions, result.faces, N);
       if (flipped.empty()) break;
       std::vector<int> merged;
       std::set_union(result.flipped_faces.begin(), result.flipped_faces.end(), flipped.begin(), flipped.end(),
@@ -150,6 +162,16 @@ SurfaceSmoothing smooth_surface(const TriangleMesh& mesh, const SurfaceSmoothing
       edges = mesh_edges(F);
       N = normals(F);
     }
+  }
+  const Eigen::MatrixX3d& V = *positions;
+  if (result.moved_vertices.empty()) {
+    result.positions = mesh.vertices.positions;
+  } else {
+    const Eigen::VectorXd moves = (V - given).rowwise().norm() * std::ldexp(1.0, frame.exponent);
+    result.largest_move = moves.maxCoeff();
+    result.rms_move = std::sqrt(moves.squaredNorm() / static_cast<double>(moves.size()));
+    // In the steps the patches' corners take back (shift, then scale).
+    result.positions = (V.rowwise() + frame.centre * std::ldexp(1.0, -frame.exponent)) * std::ldexp(1.0, frame.exponent);
   }
   std::vector<char> in_a_face(static_cast<std::size_t>(V.rows()), 0);
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
@@ -229,6 +251,13 @@ nlohmann::json smoothing_report(const SurfaceSmoothing& s, const SurfaceSmoothin
   if (!options.given_normals && options.fitted_neighbours > 0) {
     report["normals"] = "fitted";
     report["fitted_neighbours"] = options.fitted_neighbours;
+  }
+  if (options.jet_neighbours > 0) {
+    report["positions"] = "fitted";
+    report["jet_neighbours"] = options.jet_neighbours;
+    report["moved_vertices"] = s.moved_vertices.size();
+    report["moves"] = {{"rms", s.rms_move}, {"max", s.largest_move}};
+    report["fit_noise"] = s.fit_noise;
   }
   if (options.scheme != SplitScheme::six_split)
     report["ratio"] = options.least_squares_ratio ? "least-squares" : "one";

@@ -40,6 +40,12 @@ struct SurfaceSmoothingOptions {
   /// nearest vertices (fitted_normals.h, a scanstation extension of §9.4)
   /// instead of the `normals` weighting; the station flow takes 16
   int fitted_neighbours = 0;
+  /// > 0: the patches interpolate the vertices moved onto jets fitted to
+  /// this many nearest vertices (jet_fitted_vertices.h; at least 10, and
+  /// none is moved on a mesh of fewer) instead of the mesh's own, and the
+  /// normals are taken there: a scan's noise no longer shapes the surface.
+  /// The station flow takes 16; the thesis interpolates the mesh (0)
+  int jet_neighbours = 0;
   double tension = 1.0 / 3.0;
   bool least_squares_ratio = true;
   double min_angle = 20.0;
@@ -66,6 +72,13 @@ struct SurfaceSmoothing {
   Eigen::MatrixX3i faces;
   std::vector<int> flipped_faces;
   std::vector<int> adjusted_vertices;
+  /// the vertices the patches go through: the mesh's, or with
+  /// jet_neighbours those fitted
+  Eigen::MatrixX3d positions;
+  /// jet_neighbours: the vertices moved, how far (root mean square over
+  /// all vertices, and the largest move) and the jets' noise estimate
+  std::vector<int> moved_vertices;
+  double rms_move = 0, largest_move = 0, fit_noise = 0;
   std::size_t isolated_vertices = 0;  ///< vertices in no triangle: not on the surface, left out
   std::size_t sign_condition_violations = 0;
   std::size_t two_split_candidates = 0, two_split_triangles = 0;

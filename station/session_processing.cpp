@@ -174,6 +174,11 @@ SurfaceSmoothingOptions station_smoothing() {
   // own faces lean far off the surface where a scan is sparse (docs/design.md,
   // "Fitted normals").
   options.fitted_neighbours = 16;
+  // And the vertices themselves fitted, where the fit stands for the
+  // surface: the scan's noise no longer shapes the smooth surface
+  // (docs/design.md, "Fitted positions"). The boundary mesh still goes
+  // through every scanned point.
+  options.jet_neighbours = 16;
   // Slivers between two profiles that face against their corners' normals
   // fold the surface wherever they are (docs/design.md, "Turned faces").
   options.flip_turned_faces = true;

@@ -133,4 +133,12 @@ void print_tessellation(const nlohmann::json& t) {
   std::printf("\n");
 }
 
+void print_fitted_positions(const nlohmann::json& s) {
+  if (!s.contains("moved_vertices")) return;
+  std::printf("  through the vertices fitted to the points around them: %zu moved, by %.2g RMS, at most %.2g "
+              "(the fits' noise %.2g)\n",
+              s["moved_vertices"].get<std::size_t>(), s["moves"]["rms"].get<double>(), s["moves"]["max"].get<double>(),
+              s["fit_noise"].get<double>());
+}
+
 }  // namespace scanstation::app

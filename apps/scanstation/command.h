@@ -105,6 +105,11 @@ CLI::Option* add_up_option(CLI::App& app, std::string& up);
 /// describe()).
 void print_tessellation(const nlohmann::json& tessellation);
 
+/// One line on the vertices fitted before smoothing (the smoothing report's
+/// moved_vertices, moves, fit_noise; smoothing/jet_fitted_vertices.h), when
+/// the report has them.
+void print_fitted_positions(const nlohmann::json& smoothing);
+
 /// Refuses, before the work, an output name whose format cannot hold a
 /// triangle mesh (xyz would keep the points only, svg holds 2D polygons);
 /// `what` names the result ("the boundary", "the smooth surface", ...).

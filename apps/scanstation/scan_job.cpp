@@ -267,6 +267,7 @@ void print_results(const nlohmann::json& r) {
                   s["patches"].get<std::size_t>(), s["scheme"].get<std::string>().c_str(),
                   s["g1"]["max_normal_angle"].get<double>(), s["g1"]["max_normal_angle_where_exact"].get<double>(),
                   s["dependent_edges"].get<std::size_t>(), s["sign_condition_violations"].get<std::size_t>());
+    print_fitted_positions(s);
     if (s.contains("flipped_faces") && !s["flipped_faces"].empty())
       std::printf("  on the boundary's triangles with %zu faces turned against their corners' normals flipped first\n",
                   s["flipped_faces"].size());

@@ -46,9 +46,16 @@ class SmoothCommand final : public Command {
         ->check(CLI::IsMember({"area", "uniform", "inverse-area", "given", "fitted"}))
         ->capture_default_str();
     cli_->add_option("--neighbours", neighbours_,
-                     "--normals fitted: how many nearest vertices each plane is fitted to (all of them when there are "
-                     "fewer)")
+                     "--normals fitted and --positions fitted: how many nearest vertices each plane or jet is fitted "
+                     "to (all of them when there are fewer; a jet takes at least 10)")
         ->check(CLI::Range(3, 256))  // a plane through a thousand times more points is no local plane, and slow
+        ->capture_default_str();
+    cli_->add_option("--positions", positions_,
+                     "The vertices the surface goes through: mesh (its own, as the thesis) or fitted (each moved onto "
+                     "a quadratic jet fitted to its --neighbours nearest vertices on its side of the surface, where "
+                     "the jet's residual is within 2.5 times the median: a scan's noise smoothed away, sharp edges "
+                     "kept; the station flow's choice)")
+        ->check(CLI::IsMember({"mesh", "fitted"}))
         ->capture_default_str();
     cli_->add_option("--ratio", ratio_,
                      "three-split Step 5: one (e0 = e1 = 1, as the thesis) or least-squares (the free ratio e1/e0 "
@@ -107,7 +114,11 @@ class SmoothCommand final : public Command {
     // without a word (--min-angle on the six-split).
     refuse_unused({"--min-angle"}, scheme_ != "adaptive-two-split", "is for --scheme adaptive-two-split");
     refuse_unused({"--ratio"}, scheme_ != "three-split", "is for --scheme three-split");
-    refuse_unused({"--neighbours"}, normals_ != "fitted", "is for --normals fitted");
+    refuse_unused({"--neighbours"}, normals_ != "fitted" && positions_ != "fitted",
+                  "is for --normals fitted or --positions fitted");
+    if (positions_ == "fitted" && neighbours_ < 10)
+      throw InvalidInput("--positions fitted: a jet is fitted to at least 10 vertices, got --neighbours " +
+                         std::to_string(neighbours_));
     require_mesh_output(output_, "the smooth surface");
     smooth_surface(context, *input.mesh);
   }
@@ -121,8 +132,8 @@ class SmoothCommand final : public Command {
 
   void smooth_curve(CommandContext& context, const Polygon2& polygon) {
     if (zebra_) throw InvalidInput("--zebra renders surfaces; --scheme curve makes a 2D curve");
-    refuse_unused({"--neighbours", "--ratio", "--tension", "--min-angle", "--max-move", "--flip-turned-faces",
-                   "--density"},
+    refuse_unused({"--neighbours", "--positions", "--ratio", "--tension", "--min-angle", "--max-move",
+                   "--flip-turned-faces", "--density"},
                   true, "is for surfaces; --scheme curve makes a 2D curve (§9.2)");
     if (polygon.size() < 3)
       throw InvalidInput(input_.string() + ": expected a polygon of at least 3 vertices, found " +
@@ -203,6 +214,7 @@ class SmoothCommand final : public Command {
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
     print_tessellation(result["tessellation"]);
+    if (options.jet_neighbours > 0) print_fitted_positions(result);
     if (!smoothed.flipped_faces.empty())
       std::printf("%zu face(s) turned against their corners' normals changed by edge flips first\n",
                   smoothed.flipped_faces.size());
@@ -245,6 +257,7 @@ class SmoothCommand final : public Command {
     options.min_angle = min_angle_;
     if (max_move_) options.max_move = *max_move_;
     options.flip_turned_faces = flip_turned_faces_;
+    if (positions_ == "fitted") options.jet_neighbours = neighbours_;
     if (normals_ == "given") {
       if (!mesh.vertices.has_normals()) throw InvalidInput("--normals given: " + input_.string() + " has no normals");
       options.given_normals = mesh.vertices.normals;
@@ -262,6 +275,7 @@ class SmoothCommand final : public Command {
   std::filesystem::path input_, output_;
   std::string scheme_ = "six-split";
   std::string normals_ = "area";
+  std::string positions_ = "mesh";
   int neighbours_ = 16;
   std::string ratio_ = "least-squares";
   double tension_ = 1.0 / 3.0;

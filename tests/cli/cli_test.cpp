@@ -813,7 +813,9 @@ TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
   const std::vector<std::pair<std::string, std::string>> unused = {
       {eight + " --min-angle 30", "--min-angle is for --scheme adaptive-two-split"},
       {eight + " --scheme six-split --ratio one", "--ratio is for --scheme three-split"},
-      {eight + " --neighbours 8", "--neighbours is for --normals fitted"},
+      {eight + " --neighbours 8", "--neighbours is for --normals fitted or --positions fitted"},
+      {eight + " --positions fitted --neighbours 8", "--positions fitted: a jet is fitted to at least 10 vertices"},
+      {path(dir / "poly.xy") + " --positions fitted", "--positions is for surfaces"},
       {path(dir / "poly.xy") + " --tension 0.4", "--tension is for surfaces"},
       {path(dir / "poly.xy") + " --max-move 1", "--max-move is for surfaces"}};
   std::ofstream(dir / "poly.xy") << "0 0\n1 0\n1 1\n0 1\n";
@@ -823,6 +825,16 @@ TEST(Cli, SmoothRejectsOpenMeshesAndBadOptions) {
     EXPECT_THAT(r.err, testing::HasSubstr(message));
   }
   EXPECT_EQ(scanstation("smooth " + eight + " --normals fitted --neighbours 8 -o " + path(dir / "f.ply")).exit_code, 0);
+  // Fitted positions: said on the console and in the report.
+  r = scanstation("smooth " + eight + " --positions fitted --neighbours 12 -o " + path(dir / "j.ply") + " --report " +
+                  path(dir / "j.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::ContainsRegex("through the vertices fitted to the points around them: [0-9]+ moved"));
+  const nlohmann::json fitted = nlohmann::json::parse(std::ifstream(dir / "j.json"))["result"];
+  EXPECT_EQ(fitted["positions"], "fitted");
+  EXPECT_EQ(fitted["jet_neighbours"], 12);
+  EXPECT_GT(fitted["moved_vertices"].get<int>(), 0);
+  EXPECT_GT(fitted["moves"]["max"].get<double>(), 0.0);
   EXPECT_EQ(scanstation("smooth " + path(dir / "poly.xy") + " -o " + path(dir / "p.svg")).exit_code, 0);
   r = scanstation("reconstruct " + path(dir / "poly.xy") + " --carve-gaps on -o " + path(dir / "r.svg"));
   EXPECT_EQ(r.exit_code, 1);
