@@ -5,6 +5,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Monge_via_jet_fitting.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -90,12 +91,36 @@ JetFittedVertices jet_fitted_vertices(const Eigen::MatrixX3d& V, const Eigen::Ma
   std::nth_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(residuals.size() / 2),
                    residuals.end());
   out.noise = residuals[residuals.size() / 2];
+  std::vector<char> moved(static_cast<std::size_t>(V.rows()), 0);
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
     const Jet& jet = jets[static_cast<std::size_t>(v)];
     if (jet.residual < 0.0 || jet.residual > kMostResidual * out.noise) continue;
     out.positions.row(v) = jet.origin.transpose();
-    out.moved.push_back(static_cast<int>(v));
+    moved[static_cast<std::size_t>(v)] = 1;
   }
+  // A face the moves turn over (a sliver whose corner crossed its opposite
+  // edge) gets its corners back where they were scanned, until none is
+  // turned: the face's own orientation, not only its normal, is the
+  // surface's.
+  const auto normal = [](const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces, Eigen::Index f) {
+    const Eigen::RowVector3d a = P.row(faces(f, 0)), b = P.row(faces(f, 1)), c = P.row(faces(f, 2));
+    return Eigen::RowVector3d((b - a).cross(c - a));
+  };
+  for (bool reverted = true; reverted;) {
+    reverted = false;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      if (normal(out.positions, F, f).dot(normal(V, F, f)) > 0.0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const auto v = static_cast<std::size_t>(F(f, k));
+        if (!moved[v]) continue;
+        moved[v] = 0;
+        out.positions.row(F(f, k)) = V.row(F(f, k));
+        reverted = true;
+      }
+    }
+  }
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (moved[static_cast<std::size_t>(v)]) out.moved.push_back(static_cast<int>(v));
   return out;
 }
 

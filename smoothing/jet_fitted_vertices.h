@@ -42,7 +42,8 @@ struct JetFittedVertices {
 /// jet's normal turns less than 45° from its own faces' (as for the fitted
 /// normals), and the jet's residual is at most 2.5 times the median
 /// residual: more is a jet across a sharp edge, a thin feature or an
-/// outlier's neighbourhood. Throws InvalidInput for a neighbour count out of
+/// outlier's neighbourhood. A face the moves would turn over keeps its
+/// corners where they were. Throws InvalidInput for a neighbour count out of
 /// range.
 JetFittedVertices jet_fitted_vertices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int neighbours = 16);
 

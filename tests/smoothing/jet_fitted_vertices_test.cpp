@@ -8,6 +8,7 @@
 #include "sim/surface_of_revolution.h"
 #include "smoothing/jet_fitted_vertices.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,6 +49,26 @@ TEST(JetFittedVertices, BringANoisySphereNearerTheSphere) {
       }
     }
   }
+}
+
+// Noise as large as a stereo scan's against its spacing: some moves would
+// carry a corner across its face's opposite edge. Those faces keep their
+// scanned corners, so none is turned over.
+TEST(JetFittedVertices, TurnNoFaceOver) {
+  TriangleMesh mesh = sim::icosphere(4);
+  const double spacing = mean_edge(mesh);
+  sim::Random random(11);
+  for (Eigen::Index v = 0; v < mesh.vertex_count(); ++v)
+    for (int k = 0; k < 3; ++k) mesh.vertices.positions(v, k) += 0.3 * spacing * random.normal();
+  const Eigen::MatrixX3d& V = mesh.vertices.positions;
+  const JetFittedVertices fitted = jet_fitted_vertices(V, mesh.faces, 16);
+  const auto normal = [&](const Eigen::MatrixX3d& P, Eigen::Index f) {
+    const Eigen::RowVector3d a = P.row(mesh.faces(f, 0)), b = P.row(mesh.faces(f, 1)), c = P.row(mesh.faces(f, 2));
+    return Eigen::RowVector3d((b - a).cross(c - a));
+  };
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
+    EXPECT_GT(normal(fitted.positions, f).dot(normal(V, f)), 0.0) << "face " << f;
+  EXPECT_GT(fitted.moved.size(), 0.5 * static_cast<double>(V.rows()));
 }
 
 TEST(JetFittedVertices, KeepANoiseFreeSphereOnTheSphere) {
