@@ -99,25 +99,46 @@ JetFittedVertices jet_fitted_vertices(const Eigen::MatrixX3d& V, const Eigen::Ma
     moved[static_cast<std::size_t>(v)] = 1;
   }
   // A face the moves turn over (a sliver whose corner crossed its opposite
-  // edge) gets its corners back where they were scanned, until none is
-  // turned: the face's own orientation, not only its normal, is the
-  // surface's.
+  // edge) gets its corners back where they were scanned, and so does every
+  // face around a vertex whose faces no longer fit in one hemisphere (their
+  // area-weighted normal's) when they did as scanned: there the sign
+  // condition of §9.6 could fail where it held (stereo scans: a third fewer
+  // folds). Until neither is left.
   const auto normal = [](const Eigen::MatrixX3d& P, const Eigen::MatrixX3i& faces, Eigen::Index f) {
     const Eigen::RowVector3d a = P.row(faces(f, 0)), b = P.row(faces(f, 1)), c = P.row(faces(f, 2));
     return Eigen::RowVector3d((b - a).cross(c - a));
   };
+  std::vector<std::vector<Eigen::Index>> fan(static_cast<std::size_t>(V.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) fan[static_cast<std::size_t>(F(f, k))].push_back(f);
+  const auto hemispherical = [&](const Eigen::MatrixX3d& P, Eigen::Index v) {
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    for (const Eigen::Index f : fan[static_cast<std::size_t>(v)]) sum += normal(P, F, f);
+    for (const Eigen::Index f : fan[static_cast<std::size_t>(v)])
+      if (normal(P, F, f).dot(sum) <= 0.0) return false;
+    return true;
+  };
+  const auto revert = [&](Eigen::Index f) {
+    bool any = false;
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(F(f, k));
+      if (!moved[v]) continue;
+      moved[v] = 0;
+      out.positions.row(F(f, k)) = V.row(F(f, k));
+      any = true;
+    }
+    return any;
+  };
+  std::vector<char> scanned_fits(static_cast<std::size_t>(V.rows()));
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    scanned_fits[static_cast<std::size_t>(v)] = !fan[static_cast<std::size_t>(v)].empty() && hemispherical(V, v);
   for (bool reverted = true; reverted;) {
     reverted = false;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      if (normal(out.positions, F, f).dot(normal(V, F, f)) > 0.0) continue;
-      for (int k = 0; k < 3; ++k) {
-        const auto v = static_cast<std::size_t>(F(f, k));
-        if (!moved[v]) continue;
-        moved[v] = 0;
-        out.positions.row(F(f, k)) = V.row(F(f, k));
-        reverted = true;
-      }
-    }
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      if (normal(out.positions, F, f).dot(normal(V, F, f)) <= 0.0) reverted = revert(f) || reverted;
+    for (Eigen::Index v = 0; v < V.rows(); ++v)
+      if (scanned_fits[static_cast<std::size_t>(v)] && !hemispherical(out.positions, v))
+        for (const Eigen::Index f : fan[static_cast<std::size_t>(v)]) reverted = revert(f) || reverted;
   }
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (moved[static_cast<std::size_t>(v)]) out.moved.push_back(static_cast<int>(v));

@@ -43,8 +43,9 @@ struct JetFittedVertices {
 /// normals), and the jet's residual is at most 2.5 times the median
 /// residual: more is a jet across a sharp edge, a thin feature or an
 /// outlier's neighbourhood. A face the moves would turn over keeps its
-/// corners where they were. Throws InvalidInput for a neighbour count out of
-/// range.
+/// corners where they were, and so do the faces around a vertex whose faces
+/// fit in one hemisphere as given but would not after the moves. Throws
+/// InvalidInput for a neighbour count out of range.
 JetFittedVertices jet_fitted_vertices(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int neighbours = 16);
 
 }  // namespace scanstation

@@ -52,8 +52,8 @@ TEST(JetFittedVertices, BringANoisySphereNearerTheSphere) {
 }
 
 // Noise as large as a stereo scan's against its spacing: some moves would
-// carry a corner across its face's opposite edge. Those faces keep their
-// scanned corners, so none is turned over.
+// carry a corner across its face's opposite edge, or fold a vertex's faces
+// out of one hemisphere. Those faces keep their scanned corners.
 TEST(JetFittedVertices, TurnNoFaceOver) {
   TriangleMesh mesh = sim::icosphere(4);
   const double spacing = mean_edge(mesh);
@@ -68,6 +68,22 @@ TEST(JetFittedVertices, TurnNoFaceOver) {
   };
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
     EXPECT_GT(normal(fitted.positions, f).dot(normal(V, f)), 0.0) << "face " << f;
+  // Nor does a vertex whose faces fit in a hemisphere lose that (the sign
+  // condition of §9.6 needs it).
+  std::vector<std::vector<Eigen::Index>> fan(static_cast<std::size_t>(V.rows()));
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
+    for (int k = 0; k < 3; ++k) fan[static_cast<std::size_t>(mesh.faces(f, k))].push_back(f);
+  const auto hemispherical = [&](const Eigen::MatrixX3d& P, Eigen::Index v) {
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    for (const Eigen::Index f : fan[static_cast<std::size_t>(v)]) sum += normal(P, f);
+    return std::all_of(fan[static_cast<std::size_t>(v)].begin(), fan[static_cast<std::size_t>(v)].end(),
+                       [&](Eigen::Index f) { return normal(P, f).dot(sum) > 0.0; });
+  };
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    if (hemispherical(V, v)) {
+      EXPECT_TRUE(hemispherical(fitted.positions, v)) << "vertex " << v;
+    }
+  }
   EXPECT_GT(fitted.moved.size(), 0.5 * static_cast<double>(V.rows()));
 }
 
