@@ -132,10 +132,12 @@ JetFittedVertices jet_fitted_vertices(const Eigen::MatrixX3d& V, const Eigen::Ma
   std::vector<char> scanned_fits(static_cast<std::size_t>(V.rows()));
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     scanned_fits[static_cast<std::size_t>(v)] = !fan[static_cast<std::size_t>(v)].empty() && hemispherical(V, v);
+  Eigen::MatrixX3d scanned_normals(F.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) scanned_normals.row(f) = normal(V, F, f);
   for (bool reverted = true; reverted;) {
     reverted = false;
     for (Eigen::Index f = 0; f < F.rows(); ++f)
-      if (normal(out.positions, F, f).dot(normal(V, F, f)) <= 0.0) reverted = revert(f) || reverted;
+      if (normal(out.positions, F, f).dot(scanned_normals.row(f)) <= 0.0) reverted = revert(f) || reverted;
     for (Eigen::Index v = 0; v < V.rows(); ++v)
       if (scanned_fits[static_cast<std::size_t>(v)] && !hemispherical(out.positions, v))
         for (const Eigen::Index f : fan[static_cast<std::size_t>(v)]) reverted = revert(f) || reverted;

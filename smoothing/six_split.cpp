@@ -253,6 +253,16 @@ bool pseudo_inverse_solution(Points& x, const Points& old, double phi, double ps
   return true;
 }
 
+// Along a macro half edge, M = (V, K, Y, Z) the edge row and L the next
+// row on one side: the edge's derivative (quadratic, its Bernstein
+// coefficients) and the cross differences towards L.
+struct EdgeDerivatives {
+  Point along[3], here[3];
+};
+EdgeDerivatives edge_derivatives(const Point* M, const Point* L) {
+  return {{M[1] - M[0], M[2] - M[1], M[3] - M[2]}, {L[0] - M[0], L[1] - M[1], L[2] - M[2]}};
+}
+
 // Whether the patches on the two sides of a macro half edge fold onto one
 // side of it somewhere between its ends: M = (V, K, Y, Z) the edge row, L
 // and R the next rows on either side. The tangent planes agree there (Step
@@ -261,8 +271,7 @@ bool pseudo_inverse_solution(Points& x, const Points& old, double phi, double ps
 // fails at V), no move of Step 5 can mend it, and only s = ¼, ½, ¾ and Z
 // are asked.
 bool folds(const Point* M, const Point* L, const Point* R) {
-  const Point along[3] = {M[1] - M[0], M[2] - M[1], M[3] - M[2]};
-  const Point here[3] = {L[0] - M[0], L[1] - M[1], L[2] - M[2]};
+  const auto [along, here] = edge_derivatives(M, L);
   const Point there[3] = {M[0] - R[0], M[1] - R[1], M[2] - R[2]};  // turned, so that apart is ≤ 0
   const Quartic n_here = cross_product(along, here), n_there = cross_product(along, there);
   if (n_here[0].dot(n_there[0]) > 0.0) return reaches_zero(n_here, n_there);
@@ -283,8 +292,7 @@ bool folds(const Point* M, const Point* L, const Point* R) {
 // turned by 179° at their diagonals' midpoints, dimples in the picture.
 // Decided exactly, as folds; no call where the vertex's normal vanishes.
 bool turns_back(const Point* M, const Point* L) {
-  const Point along[3] = {M[1] - M[0], M[2] - M[1], M[3] - M[2]};
-  const Point here[3] = {L[0] - M[0], L[1] - M[1], L[2] - M[2]};
+  const auto [along, here] = edge_derivatives(M, L);
   const Quartic n = cross_product(along, here);
   if (n[0].isZero()) return false;
   return reaches_zero(n, Quartic{n[0], n[0], n[0], n[0], n[0]});

@@ -214,7 +214,7 @@ class SmoothCommand final : public Command {
                 output_.c_str(), surface.patches.size(), static_cast<long long>(mesh.face_count()),
                 smoothed.g1.max_normal_angle, smoothed.adjusted_vertices.size());
     print_tessellation(result["tessellation"]);
-    if (options.jet_neighbours > 0) print_fitted_positions(result);
+    print_fitted_positions(result);
     if (!smoothed.flipped_faces.empty())
       std::printf("%zu face(s) turned against their corners' normals changed by edge flips first\n",
                   smoothed.flipped_faces.size());
